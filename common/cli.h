@@ -1,0 +1,31 @@
+// cli.h — the command line every lab shares.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace lab {
+
+struct Options {
+    std::string scene;         // scene file (default: the lab's scene in scenes/)
+    bool headless = false;     // render offscreen, no window
+    std::string out;           // PNG written after the last headless frame
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    int frames = 0;            // frames to render; 0 = until the window closes (headless: 1)
+    bool validate = false;     // Khronos validation; any message makes the run fail
+    int benchmark = 0;         // render N headless frames and print frame-time statistics
+    bool help = false;
+};
+
+// Bad command lines throw CliError (the lab prints it and exits with code 2).
+class CliError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+Options parse_command_line(int argc, const char* const* argv, const std::string& default_scene);
+std::string usage(const std::string& program);
+
+}  // namespace lab

@@ -1,0 +1,97 @@
+// scene.h — the scene-file data model (format v1, see docs/scene-format.md).
+//
+// One format for every lab: a lab reads the sections it teaches and ignores
+// the rest (lab1 ignores "lights"). The loader validates everything up front so
+// a lab never sees a half-valid scene: any problem throws SceneError whose
+// message is one line "FILE: JSON.PATH: reason".
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lab {
+
+struct CameraDesc {
+    enum class Mode { LookAt, Transform };
+    Mode mode = Mode::LookAt;
+    glm::vec3 position{0.0f, 2.0f, 6.0f};
+    glm::vec3 target{0.0f, 0.0f, 0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float yaw_deg = 0.0f;
+    float pitch_deg = 0.0f;
+    float roll_deg = 0.0f;
+    float fov_y_deg = 60.0f;
+    float near_plane = 0.01f;
+    float far_plane = 100.0f;
+};
+
+struct AmbientDesc {
+    glm::vec3 color{1.0f};
+    float intensity = 0.1f;
+};
+
+struct LightDesc {
+    enum class Type { Directional, Point, Spot };
+    Type type = Type::Directional;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // [constant, linear, quadratic]
+    float inner_deg = 12.5f;
+    float outer_deg = 17.5f;
+};
+
+struct MaterialDesc {
+    glm::vec3 albedo{0.8f};
+    glm::vec3 specular{0.0f};
+    float shininess = 32.0f;
+    glm::vec3 emissive{0.0f};
+};
+
+struct ObjectDesc {
+    std::string mesh;       // "plane" | "cube" | "sphere" | path as written in the file
+    std::string mesh_path;  // for file meshes: absolute path (resolved against the scene file)
+    std::string material;   // key into Scene::materials (validated to exist)
+    glm::vec3 position{0.0f};
+    glm::vec3 rotation_deg{0.0f};  // [rx, ry, rz]
+    glm::vec3 scale{1.0f};
+    // Mesh options (see docs/meshes.md); 0 = the primitive's default tessellation.
+    int segments = 0;
+    int rings = 0;
+    float crease_deg = 60.0f;  // file meshes without normals: split vertices at sharper edges
+    bool normalize = false;    // file meshes: fit into a unit box centered at the origin
+};
+
+struct Scene {
+    std::string file;  // the file it was loaded from ("" when parsed from a string)
+    CameraDesc camera;
+    glm::vec3 background{0.05f, 0.05f, 0.08f};
+    AmbientDesc ambient;
+    std::vector<LightDesc> lights;
+    std::map<std::string, MaterialDesc> materials;
+    std::vector<ObjectDesc> objects;
+};
+
+// Thrown for every bad input. what() is the complete one-line message.
+class SceneError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Reads and validates a scene file. Throws SceneError.
+Scene load_scene(const std::string& file);
+
+// Parses scene JSON text. `file_label` is used in messages, `base_dir` to
+// resolve relative mesh paths. Throws SceneError.
+Scene parse_scene(const std::string& json_text, const std::string& file_label,
+                  const std::string& base_dir);
+
+// M = T(position) · Rz(rz) · Ry(ry) · Rx(rx) · S(scale)
+glm::mat4 model_matrix(const ObjectDesc& object);
+
+}  // namespace lab
