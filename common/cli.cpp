@@ -1,1 +1,170 @@
-// placeholder
+// cli.cpp — the command line every lab shares (see usage() for the options).
+//
+// Both "--width 800" and "--width=800" work. Every mistake throws CliError with
+// one line that names the option, so a typo never silently runs with defaults.
+#include "cli.h"
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <vector>
+
+namespace lab {
+namespace {
+
+constexpr long long kMaxImageSide = 16384;  // the largest image side Vulkan guarantees (maxImageDimension2D)
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// Edit distance: how many single-letter edits (insert, delete, replace,
+// swap two neighbours) turn a into b. "postion" -> "position" is 1, "mseh" -> "mesh" is 1.
+size_t edit_distance(const std::string& a, const std::string& b) {
+    // d[i][j] = distance between the first i letters of a and the first j letters of b.
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i)
+        for (size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+struct OptionSpec {
+    const char* name;  // without the leading "--"
+    bool takes_value;
+};
+
+const std::vector<OptionSpec>& option_specs() {
+    static const std::vector<OptionSpec> specs = {
+        {"scene", true},  {"headless", false}, {"out", true},       {"width", true},
+        {"height", true}, {"frames", true},    {"validate", false}, {"benchmark", true},
+        {"help", false},
+    };
+    return specs;
+}
+
+// "--heigth" -> " (did you mean --height?)"
+std::string did_you_mean(const std::string& name) {
+    std::string best;
+    size_t best_distance = 3;  // suggest only when at most 2 letters are off
+    for (const auto& spec : option_specs()) {
+        const size_t d = edit_distance(lower(name), spec.name);
+        if (d < best_distance) {
+            best_distance = d;
+            best = spec.name;
+        }
+    }
+    return best.empty() ? " (see --help)" : " (did you mean --" + best + "?)";
+}
+
+// A whole number in [lo, hi]; "12abc", "1.5", "" and overflow are errors.
+long long parse_integer(const std::string& option, const std::string& text, long long lo, long long hi) {
+    size_t i = (!text.empty() && (text[0] == '-' || text[0] == '+')) ? 1 : 0;
+    const bool digits = i < text.size() &&
+                        std::all_of(text.begin() + static_cast<long>(i), text.end(),
+                                    [](unsigned char c) { return std::isdigit(c) != 0; });
+    if (!digits) throw CliError(option + ": expected a whole number, got '" + text + "'");
+    const std::string range = " (allowed: " + std::to_string(lo) + ".." + std::to_string(hi) + ")";
+    // Compare digit strings before converting so that huge values cannot overflow.
+    if (text.size() - i > 18) throw CliError(option + ": " + text + " is out of range" + range);
+    const long long v = std::stoll(text);
+    if (v < lo || v > hi) throw CliError(option + ": " + text + " is out of range" + range);
+    return v;
+}
+
+}  // namespace
+
+Options parse_command_line(int argc, const char* const* argv, const std::string& default_scene) {
+    Options o;
+    o.scene = default_scene;
+    std::vector<std::string> args(argv + std::min(argc, 1), argv + std::max(argc, 0));
+
+    // --help wins over everything else, even over mistakes elsewhere on the line.
+    for (const auto& a : args)
+        if (a == "--help" || a == "-h") {
+            o.help = true;
+            return o;
+        }
+
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        if (arg.size() > 1 && arg[0] == '-' && arg[1] != '-')
+            throw CliError("unknown option '" + arg + "' (long options start with --; see --help)");
+        if (arg.rfind("--", 0) != 0) {
+            const bool looks_like_scene = lower(arg).size() > 5 &&
+                                          lower(arg).compare(arg.size() - 5, 5, ".json") == 0;
+            throw CliError("unexpected argument '" + arg + "'" +
+                           (looks_like_scene ? " (did you mean --scene " + arg + "?)" : " (see --help)"));
+        }
+        // Split "--name=value" / "--name".
+        const size_t eq = arg.find('=');
+        const std::string name = arg.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
+        const std::string option = "--" + name;
+        auto spec = std::find_if(option_specs().begin(), option_specs().end(),
+                                 [&](const OptionSpec& s) { return name == s.name; });
+        if (spec == option_specs().end()) throw CliError("unknown option '" + option + "'" + did_you_mean(name));
+
+        std::string value;
+        if (!spec->takes_value) {
+            if (eq != std::string::npos) throw CliError(option + " takes no value (got '" + arg + "')");
+        } else if (eq != std::string::npos) {
+            value = arg.substr(eq + 1);
+            if (value.empty()) throw CliError(option + ": missing value after '='");
+        } else {
+            // The next argument is the value, unless there is none or it is the next option.
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)
+                throw CliError(option + ": missing value");
+            value = args[++i];
+        }
+
+        if (name == "scene") {
+            o.scene = value;
+        } else if (name == "headless") {
+            o.headless = true;
+        } else if (name == "out") {
+            if (lower(value).size() < 5 || lower(value).compare(value.size() - 4, 4, ".png") != 0)
+                throw CliError(option + ": the file name must end in .png, got '" + value + "'");
+            o.out = value;
+            o.headless = true;  // a PNG comes from a headless render
+        } else if (name == "width") {
+            o.width = static_cast<uint32_t>(parse_integer(option, value, 1, kMaxImageSide));
+        } else if (name == "height") {
+            o.height = static_cast<uint32_t>(parse_integer(option, value, 1, kMaxImageSide));
+        } else if (name == "frames") {
+            o.frames = static_cast<int>(parse_integer(option, value, 1, INT_MAX));
+        } else if (name == "validate") {
+            o.validate = true;
+        } else if (name == "benchmark") {
+            o.benchmark = static_cast<int>(parse_integer(option, value, 1, INT_MAX));
+            o.headless = true;  // benchmarks measure rendering, not the window system
+        }
+    }
+    return o;
+}
+
+std::string usage(const std::string& program) {
+    return "usage: " + program + " [options]\n"
+           "\n"
+           "options (--name value or --name=value):\n"
+           "  --scene FILE      scene file to render (default: the lab's own scene in scenes/)\n"
+           "  --headless        render offscreen, without a window\n"
+           "  --out FILE.png    write the last headless frame to FILE.png (implies --headless)\n"
+           "  --width W         image width in pixels, 1..16384 (default: 1280)\n"
+           "  --height H        image height in pixels, 1..16384 (default: 720)\n"
+           "  --frames N        render N >= 1 frames, then exit\n"
+           "                    (default: until the window closes; headless: 1)\n"
+           "  --validate        enable the Khronos validation layer; any message fails the run\n"
+           "  --benchmark N     render N >= 1 headless frames and print frame-time statistics\n"
+           "                    (implies --headless)\n"
+           "  -h, --help        show this help and exit\n"
+           "\n"
+           "A bad command line prints one error line and exits with code 2.\n";
+}
+
+}  // namespace lab

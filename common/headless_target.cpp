@@ -1,1 +1,74 @@
-// placeholder
+#include "headless_target.h"
+
+#include <cstring>
+
+namespace lab {
+
+HeadlessTarget::HeadlessTarget(const VulkanContext& vk, VkExtent2D extent)
+    : vk_(vk),
+      extent_(extent),
+      // The pass leaves the image ready to be copied out.
+      render_pass_(make_render_pass(vk, kColorFormat, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)),
+      color_(create_image_2d(vk, extent, kColorFormat,
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                             VK_IMAGE_ASPECT_COLOR_BIT)),
+      depth_(create_image_2d(vk, extent, vk.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                             VK_IMAGE_ASPECT_DEPTH_BIT)),
+      slots_(vk) {
+    VkImageView views[2] = {color_.view, depth_.view};
+    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    info.renderPass = render_pass_;
+    info.attachmentCount = 2;
+    info.pAttachments = views;
+    info.width = extent.width;
+    info.height = extent.height;
+    info.layers = 1;
+    VkFramebuffer framebuffer;
+    VK_CHECK(vkCreateFramebuffer(vk.device(), &info, nullptr, &framebuffer));
+    VkDevice device = vk.device();
+    framebuffer_ = Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+}
+
+HeadlessTarget::~HeadlessTarget() { vkDeviceWaitIdle(vk_.device()); }
+
+bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
+    slots_.wait(slot_);
+    slots_.reset_fence(slot_);
+    frame.cmd = slots_.command_buffer(slot_);
+    frame.slot = slot_;
+    frame.extent = extent_;
+    begin_render_pass(frame.cmd, render_pass_, framebuffer_, extent_, clear_linear);
+    return true;
+}
+
+void HeadlessTarget::end_frame() {
+    VkCommandBuffer cmd = slots_.command_buffer(slot_);
+    vkCmdEndRenderPass(cmd);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK_CHECK(vkQueueSubmit(vk_.queue(), 1, &submit, slots_.fence(slot_)));
+    slot_ = (slot_ + 1) % kFramesInFlight;
+}
+
+Image8 HeadlessTarget::read_pixels() {
+    VK_CHECK(vkQueueWaitIdle(vk_.queue()));
+    const VkDeviceSize size = VkDeviceSize(extent_.width) * extent_.height * 4;
+    Buffer readback = Buffer::host_visible(vk_, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    vk_.run_once([&](VkCommandBuffer cmd) {
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {extent_.width, extent_.height, 1};
+        vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.get(), 1, &region);
+    });
+    Image8 image;
+    image.width = int(extent_.width);
+    image.height = int(extent_.height);
+    image.rgba.resize(size);
+    std::memcpy(image.rgba.data(), readback.mapped(), size);
+    for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;  // opaque PNG
+    return image;
+}
+
+}  // namespace lab

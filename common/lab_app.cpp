@@ -1,1 +1,204 @@
-// placeholder
+#include "lab_app.h"
+
+#include "headless_target.h"
+#include "window_target.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+namespace lab {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Percentile of a sample (nearest-rank on the sorted values).
+double percentile(std::vector<double> values, double p) {
+    std::sort(values.begin(), values.end());
+    const size_t rank = size_t(std::max(0.0, std::ceil(p / 100.0 * double(values.size())) - 1.0));
+    return values[std::min(rank, values.size() - 1)];
+}
+}  // namespace
+
+LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_messages)
+    : info_(info), options_(options) {
+    ContextOptions context;
+    context.validate = options.validate;
+    context.message_count = validation_messages;
+    if (!options.headless) {
+        window_ = std::make_unique<Window>(info.name, options.width, options.height);
+        context.window = window_->handle();
+    }
+    vk_ = std::make_unique<VulkanContext>(context);
+    if (window_) {
+        auto target = std::make_unique<WindowTarget>(*vk_, *window_);
+        const uint32_t images = target->image_count();
+        target_ = std::move(target);
+        ui_ = std::make_unique<ImGuiLayer>(*vk_, window_->handle(), target_->render_pass(), images);
+    } else {
+        auto target = std::make_unique<HeadlessTarget>(*vk_, VkExtent2D{options.width, options.height});
+        headless_ = target.get();
+        target_ = std::move(target);
+    }
+}
+
+LabApp::~LabApp() {
+    if (vk_) vkDeviceWaitIdle(vk_->device());
+    ui_.reset();
+    target_.reset();
+    vk_.reset();
+    window_.reset();
+}
+
+bool LabApp::key_down(int glfw_key) const {
+    if (!window_ || (ui_ && ui_->wants_keyboard())) return false;
+    return glfwGetKey(window_->handle(), glfw_key) == GLFW_PRESS;
+}
+
+bool LabApp::key_pressed(int glfw_key) {
+    const bool down = key_down(glfw_key);
+    auto it = std::find(keys_down_last_frame_.begin(), keys_down_last_frame_.end(), glfw_key);
+    const bool was_down = it != keys_down_last_frame_.end();
+    if (down && !was_down) keys_down_last_frame_.push_back(glfw_key);
+    if (!down && was_down) keys_down_last_frame_.erase(it);
+    return down && !was_down;
+}
+
+void LabApp::poll_input() {
+    glfwPollEvents();
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window_->handle(), &x, &y);
+    const glm::dvec2 cursor(x, y);
+    const bool ui_has_mouse = ui_ && ui_->wants_mouse();
+    mouse_.delta = have_cursor_ && !ui_has_mouse ? glm::vec2(cursor - last_cursor_) : glm::vec2(0.0f);
+    mouse_.left_down = !ui_has_mouse && glfwGetMouseButton(window_->handle(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const float scroll = window_->take_scroll();
+    mouse_.scroll = ui_has_mouse ? 0.0f : scroll;
+    last_cursor_ = cursor;
+    have_cursor_ = true;
+}
+
+void LabApp::run(const Callbacks& callbacks) {
+    if (window_)
+        run_window(callbacks);
+    else
+        run_headless(callbacks);
+}
+
+void LabApp::run_window(const Callbacks& cb) {
+    auto last = Clock::now();
+    for (int frame_count = 0; !window_->should_close(); ) {
+        poll_input();
+        const auto now = Clock::now();
+        const float dt = std::chrono::duration<float>(now - last).count();
+        last = now;
+        // Exponential moving average: a steady number for the UI.
+        average_frame_ms_ = average_frame_ms_ == 0.0f ? dt * 1000.0f : 0.95f * average_frame_ms_ + 0.05f * dt * 1000.0f;
+
+        cb.update(dt);
+        Frame frame;
+        if (!target_->begin_frame(cb.background(), frame)) continue;
+        ui_->new_frame();
+        cb.ui();
+        cb.record(frame);
+        ui_->render(frame.cmd);
+        target_->end_frame();
+        if (options_.frames > 0 && ++frame_count >= options_.frames) break;
+    }
+    vkDeviceWaitIdle(vk_->device());
+}
+
+void LabApp::run_headless(const Callbacks& cb) {
+    const bool benchmark = options_.benchmark > 0;
+    const int warmup = benchmark ? 3 : 0;  // first frames pay for pipeline compilation and caches
+    const int frames = benchmark ? options_.benchmark : std::max(1, options_.frames);
+    std::vector<double> frame_ms;
+    frame_ms.reserve(size_t(frames));
+
+    const auto start = Clock::now();
+    for (int i = 0; i < warmup + frames; ++i) {
+        const auto frame_start = Clock::now();
+        cb.update(1.0f / 60.0f);  // headless time advances at a fixed rate: deterministic output
+        Frame frame;
+        target_->begin_frame(cb.background(), frame);
+        cb.record(frame);
+        target_->end_frame();
+        if (i >= warmup) frame_ms.push_back(ms_since(frame_start));
+    }
+    vkDeviceWaitIdle(vk_->device());
+    const double total_ms = ms_since(start);
+
+    if (benchmark) {
+        double mean = 0.0;
+        for (double v : frame_ms) mean += v / double(frame_ms.size());
+        // One machine-readable line (key=value pairs) for scripts and bench/.
+        std::printf("benchmark lab=%s width=%u height=%u frames=%d min_ms=%.3f median_ms=%.3f p95_ms=%.3f mean_ms=%.3f\n",
+                    info_.name.c_str(), options_.width, options_.height, frames,
+                    *std::min_element(frame_ms.begin(), frame_ms.end()), percentile(frame_ms, 50.0),
+                    percentile(frame_ms, 95.0), mean);
+    } else {
+        std::printf("%s: rendered %d frame%s at %ux%u in %.1f ms\n", info_.name.c_str(), frames, frames == 1 ? "" : "s",
+                    options_.width, options_.height, total_ms);
+    }
+    if (!benchmark || !options_.out.empty()) {
+        const std::string out = options_.out.empty() ? info_.name + ".png" : options_.out;
+        write_png(out, headless_->read_pixels());
+        std::printf("%s: wrote %s\n", info_.name.c_str(), std::filesystem::absolute(out).string().c_str());
+    }
+    std::fflush(stdout);
+}
+
+int run_lab(int argc, char** argv, const LabInfo& info,
+            const std::function<void(LabApp& app, const Scene& scene)>& body) {
+    const std::string name = info.name;
+    int validation_messages = 0;
+    try {
+        // The scene folder can be moved: LAB_SCENE_DIR overrides the compiled-in one.
+        std::string default_scene = info.default_scene;
+        if (const char* dir = std::getenv("LAB_SCENE_DIR"); dir && *dir)
+            default_scene = std::string(dir) + "/" + std::filesystem::path(default_scene).filename().string();
+
+        Options options = parse_command_line(argc, argv, default_scene);
+        if (options.help) {
+            std::printf("%s", usage(name).c_str());
+            return 0;
+        }
+        const Scene scene = load_scene(options.scene);
+        {
+            LabApp app(info, options, &validation_messages);
+            body(app, scene);
+        }  // everything Vulkan is destroyed here, so leaks are reported before we count
+        if (validation_messages > 0) {
+            std::fprintf(stderr, "%s: error: %d validation message%s (see above)\n", name.c_str(), validation_messages,
+                         validation_messages == 1 ? "" : "s");
+            return 1;
+        }
+        return 0;
+    } catch (const CliError& e) {
+        std::fprintf(stderr, "%s: error: %s (try --help)\n", name.c_str(), e.what());
+        return 2;
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 2;
+    } catch (const VulkanError& e) {
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 1;
+    } catch (const std::runtime_error& e) {  // bad input found while loading (meshes, images)
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 1;
+    }
+}
+
+}  // namespace lab

@@ -1,1 +1,192 @@
-// placeholder
+#include "pipeline_builder.h"
+
+#include <cstddef>
+
+namespace lab {
+
+PipelineBuilder& PipelineBuilder::shaders(VkShaderModule vertex, VkShaderModule fragment) {
+    vertex_ = vertex;
+    fragment_ = fragment;
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::vertex_attributes(unsigned mask) {
+    attributes_ = mask;
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::descriptor_set(VkDescriptorSetLayout layout) {
+    set_layouts_.push_back(layout);
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::push_constants(VkShaderStageFlags stages, uint32_t size) {
+    push_ranges_.push_back({stages, 0, size});
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::cull(VkCullModeFlags mode) {
+    cull_ = mode;
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::depth(bool test, bool write) {
+    depth_test_ = test;
+    depth_write_ = write;
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::alpha_blend(bool enabled) {
+    blend_ = enabled;
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::topology(VkPrimitiveTopology topology) {
+    topology_ = topology;
+    return *this;
+}
+
+PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRenderPass render_pass) const {
+    VkDevice device = vk.device();
+    Result result;
+
+    VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layout_info.setLayoutCount = static_cast<uint32_t>(set_layouts_.size());
+    layout_info.pSetLayouts = set_layouts_.data();
+    layout_info.pushConstantRangeCount = static_cast<uint32_t>(push_ranges_.size());
+    layout_info.pPushConstantRanges = push_ranges_.data();
+    VkPipelineLayout layout;
+    VK_CHECK(vkCreatePipelineLayout(device, &layout_info, nullptr, &layout));
+    result.layout = Handle<VkPipelineLayout>(layout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
+
+    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vertex_;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = fragment_;
+    stages[1].pName = "main";
+
+    // Only the attributes the shader reads are declared (unused ones are a validation warning).
+    const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const VkVertexInputAttributeDescription all[4] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
+    };
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    for (unsigned i = 0; i < 4; ++i)
+        if (attributes_ & (1u << i)) attributes.push_back(all[i]);
+    VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertex_input.vertexBindingDescriptionCount = attributes.empty() ? 0 : 1;
+    vertex_input.pVertexBindingDescriptions = &binding;
+    vertex_input.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+    vertex_input.pVertexAttributeDescriptions = attributes.data();
+
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = topology_;
+
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = cull_;
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.lineWidth = 1.0f;
+
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = depth_test_;
+    depth.depthWriteEnable = depth_write_;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+
+    VkPipelineColorBlendAttachmentState blend_attachment{};
+    blend_attachment.colorWriteMask =
+        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if (blend_) {  // classic "over": src·α + dst·(1 − α)
+        blend_attachment.blendEnable = VK_TRUE;
+        blend_attachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+        blend_attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend_attachment.colorBlendOp = VK_BLEND_OP_ADD;
+        blend_attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend_attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend_attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = 1;
+    blend.pAttachments = &blend_attachment;
+
+    const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = 2;
+    dynamic.pDynamicStates = dynamic_states;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertex_input;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamic;
+    info.layout = layout;
+    info.renderPass = render_pass;
+    VkPipeline pipeline;
+    VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    result.pipeline = Handle<VkPipeline>(pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+    return result;
+}
+
+Handle<VkDescriptorSetLayout> make_descriptor_set_layout(const VulkanContext& vk,
+                                                         const std::vector<DescriptorBinding>& bindings) {
+    std::vector<VkDescriptorSetLayoutBinding> vk_bindings;
+    for (uint32_t i = 0; i < bindings.size(); ++i)
+        vk_bindings.push_back({i, bindings[i].type, 1, bindings[i].stages, nullptr});
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = static_cast<uint32_t>(vk_bindings.size());
+    info.pBindings = vk_bindings.data();
+    VkDescriptorSetLayout layout;
+    VK_CHECK(vkCreateDescriptorSetLayout(vk.device(), &info, nullptr, &layout));
+    VkDevice device = vk.device();
+    return Handle<VkDescriptorSetLayout>(layout, [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
+}
+
+Handle<VkDescriptorPool> make_descriptor_pool(const VulkanContext& vk, const std::vector<DescriptorBinding>& bindings,
+                                              uint32_t max_sets) {
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (const auto& b : bindings) sizes.push_back({b.type, max_sets});
+    VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.maxSets = max_sets;
+    info.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    info.pPoolSizes = sizes.data();
+    VkDescriptorPool pool;
+    VK_CHECK(vkCreateDescriptorPool(vk.device(), &info, nullptr, &pool));
+    VkDevice device = vk.device();
+    return Handle<VkDescriptorPool>(pool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
+}
+
+VkDescriptorSet allocate_descriptor_set(const VulkanContext& vk, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = pool;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set;
+    VK_CHECK(vkAllocateDescriptorSets(vk.device(), &info, &set));
+    return set;  // freed with its pool
+}
+
+void write_buffer_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                             VkBuffer buffer, VkDeviceSize size) {
+    VkDescriptorBufferInfo buffer_info{buffer, 0, size};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = type;
+    write.pBufferInfo = &buffer_info;
+    vkUpdateDescriptorSets(vk.device(), 1, &write, 0, nullptr);
+}
+
+}  // namespace lab

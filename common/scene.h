@@ -94,4 +94,8 @@ Scene parse_scene(const std::string& json_text, const std::string& file_label,
 // M = T(position) · Rz(rz) · Ry(ry) · Rx(rx) · S(scale)
 glm::mat4 model_matrix(const ObjectDesc& object);
 
+// The built-in mesh names the loader accepts in "mesh" (plane, cube, sphere,
+// ...; see docs/meshes.md). make_mesh must build every one of them.
+const std::vector<std::string>& primitive_mesh_names();
+
 }  // namespace lab

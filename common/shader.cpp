@@ -1,1 +1,27 @@
-// placeholder
+#include "shader.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+namespace lab {
+
+Handle<VkShaderModule> load_shader(const VulkanContext& vk, const std::string& compiled_dir, const std::string& name) {
+    const char* override_dir = std::getenv("LAB_SHADER_DIR");
+    const std::string path = (override_dir && *override_dir ? std::string(override_dir) : compiled_dir) + "/" + name + ".spv";
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw VulkanError(path + ": cannot open compiled shader (rebuild the lab, or check LAB_SHADER_DIR)");
+    std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    if (bytes.empty() || bytes.size() % 4 != 0) throw VulkanError(path + ": not a SPIR-V file (size is not a multiple of 4)");
+
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = bytes.size();
+    info.pCode = reinterpret_cast<const uint32_t*>(bytes.data());
+    VkShaderModule module;
+    VK_CHECK(vkCreateShaderModule(vk.device(), &info, nullptr, &module));
+    VkDevice device = vk.device();
+    return Handle<VkShaderModule>(module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
+}
+
+}  // namespace lab

@@ -1,1 +1,268 @@
-// placeholder
+#include "vk_context.h"
+
+#include <GLFW/glfw3.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace lab {
+
+const char* vk_result_name(VkResult result) {
+    switch (result) {
+#define LAB_RESULT(r) \
+    case r:           \
+        return #r;
+        LAB_RESULT(VK_NOT_READY)
+        LAB_RESULT(VK_TIMEOUT)
+        LAB_RESULT(VK_INCOMPLETE)
+        LAB_RESULT(VK_SUBOPTIMAL_KHR)
+        LAB_RESULT(VK_ERROR_OUT_OF_HOST_MEMORY)
+        LAB_RESULT(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        LAB_RESULT(VK_ERROR_INITIALIZATION_FAILED)
+        LAB_RESULT(VK_ERROR_DEVICE_LOST)
+        LAB_RESULT(VK_ERROR_MEMORY_MAP_FAILED)
+        LAB_RESULT(VK_ERROR_LAYER_NOT_PRESENT)
+        LAB_RESULT(VK_ERROR_EXTENSION_NOT_PRESENT)
+        LAB_RESULT(VK_ERROR_FEATURE_NOT_PRESENT)
+        LAB_RESULT(VK_ERROR_INCOMPATIBLE_DRIVER)
+        LAB_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        LAB_RESULT(VK_ERROR_SURFACE_LOST_KHR)
+        LAB_RESULT(VK_ERROR_OUT_OF_DATE_KHR)
+#undef LAB_RESULT
+        default:
+            return "VkResult error";
+    }
+}
+
+void throw_vk_error(VkResult result, const char* call, const char* file, int line) {
+    throw VulkanError(std::string(file) + ":" + std::to_string(line) + ": " + call + " failed with " +
+                      vk_result_name(result) + " (" + std::to_string(result) + ")");
+}
+
+namespace {
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool has_layer(const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    std::vector<VkLayerProperties> layers(count);
+    vkEnumerateInstanceLayerProperties(&count, layers.data());
+    for (const auto& l : layers)
+        if (std::strcmp(l.layerName, name) == 0) return true;
+    return false;
+}
+}  // namespace
+
+VulkanContext::VulkanContext(const ContextOptions& options) : external_count_(options.message_count) {
+    try {
+        create_instance(options);
+        if (options.window) {
+            VK_CHECK(glfwCreateWindowSurface(instance_, options.window, nullptr, &surface_));
+            presenting_ = true;
+        }
+        pick_physical_device();
+        create_device();
+    } catch (...) {
+        release();  // destroy what was created, then rethrow
+        throw;
+    }
+}
+
+VulkanContext::~VulkanContext() { release(); }
+
+void VulkanContext::release() {
+    if (device_) {
+        vkDeviceWaitIdle(device_);
+        if (upload_pool_) vkDestroyCommandPool(device_, upload_pool_, nullptr);
+        vkDestroyDevice(device_, nullptr);
+    }
+    if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+    device_ = VK_NULL_HANDLE;
+    surface_ = VK_NULL_HANDLE;
+    messenger_ = VK_NULL_HANDLE;
+    instance_ = VK_NULL_HANDLE;
+    upload_pool_ = VK_NULL_HANDLE;
+}
+
+VkBool32 VulkanContext::on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                         VkDebugUtilsMessageTypeFlagsEXT,
+                                         const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
+    auto* context = static_cast<VulkanContext*>(self);
+    context->validation_messages_++;
+    if (context->external_count_) ++*context->external_count_;
+    const char* level = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
+    std::fprintf(stderr, "validation %s: %s\n", level, data->pMessage);
+    return VK_FALSE;
+}
+
+void VulkanContext::create_instance(const ContextOptions& options) {
+    std::vector<const char*> extensions;
+    if (options.window) {
+        uint32_t count = 0;
+        const char** glfw_extensions = glfwGetRequiredInstanceExtensions(&count);
+        if (!glfw_extensions) throw VulkanError("GLFW: this system cannot present Vulkan to a window");
+        extensions.assign(glfw_extensions, glfw_extensions + count);
+    }
+    std::vector<const char*> layers;
+    if (options.validate) {
+        if (!has_layer(kValidationLayer))
+            throw VulkanError(std::string("--validate: ") + kValidationLayer +
+                              " is not installed (scripts/setup.sh installs vulkan-validationlayers)");
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "vulkan-labs";
+    app.apiVersion = VK_API_VERSION_1_1;
+
+    // Warnings and errors only: info/verbose messages are loader chatter.
+    VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messenger.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messenger.pfnUserCallback = &VulkanContext::on_debug_message;
+    messenger.pUserData = this;
+
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pApplicationInfo = &app;
+    info.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    info.ppEnabledLayerNames = layers.data();
+    info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
+    if (options.validate) info.pNext = &messenger;  // also catches messages from vkCreate/DestroyInstance
+    VK_CHECK(vkCreateInstance(&info, nullptr, &instance_));
+
+    if (options.validate) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+        if (!create) throw VulkanError("--validate: VK_EXT_debug_utils is not available");
+        VK_CHECK(create(instance_, &messenger, nullptr, &messenger_));
+    }
+}
+
+void VulkanContext::pick_physical_device() {
+    uint32_t count = 0;
+    VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, nullptr));
+    std::vector<VkPhysicalDevice> devices(count);
+    VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, devices.data()));
+
+    // Prefer a discrete GPU, then an integrated one, then anything (lavapipe is a CPU device).
+    int best_score = -1;
+    for (VkPhysicalDevice candidate : devices) {
+        uint32_t family_count = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(candidate, &family_count, nullptr);
+        std::vector<VkQueueFamilyProperties> families(family_count);
+        vkGetPhysicalDeviceQueueFamilyProperties(candidate, &family_count, families.data());
+        for (uint32_t f = 0; f < family_count; ++f) {
+            if (!(families[f].queueFlags & VK_QUEUE_GRAPHICS_BIT)) continue;
+            if (presenting_) {
+                VkBool32 can_present = VK_FALSE;
+                vkGetPhysicalDeviceSurfaceSupportKHR(candidate, f, surface_, &can_present);
+                if (!can_present) continue;
+            }
+            VkPhysicalDeviceProperties props;
+            vkGetPhysicalDeviceProperties(candidate, &props);
+            const int score = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU     ? 3
+                              : props.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 2
+                                                                                            : 1;
+            if (score > best_score) {
+                best_score = score;
+                physical_ = candidate;
+                queue_family_ = f;
+            }
+            break;
+        }
+    }
+    if (!physical_) throw VulkanError("no Vulkan device can render" + std::string(presenting_ ? " and present" : "") +
+                                      " (is mesa-vulkan-drivers installed?)");
+    vkGetPhysicalDeviceProperties(physical_, &properties_);
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+
+    // The first depth format the device can use as a depth attachment.
+    for (VkFormat format : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D24_UNORM_S8_UINT,
+                            VK_FORMAT_D16_UNORM}) {
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(physical_, format, &fp);
+        if (fp.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
+            depth_format_ = format;
+            return;
+        }
+    }
+    throw VulkanError("no supported depth format");
+}
+
+void VulkanContext::create_device() {
+    // Optional features: enable only what the device supports; labs check enabled_features().
+    VkPhysicalDeviceFeatures supported;
+    vkGetPhysicalDeviceFeatures(physical_, &supported);
+    enabled_features_.samplerAnisotropy = supported.samplerAnisotropy;
+    enabled_features_.fillModeNonSolid = supported.fillModeNonSolid;
+    enabled_features_.wideLines = supported.wideLines;
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queue_info.queueFamilyIndex = queue_family_;
+    queue_info.queueCount = 1;
+    queue_info.pQueuePriorities = &priority;
+
+    std::vector<const char*> extensions;
+    if (presenting_) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+
+    VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    info.queueCreateInfoCount = 1;
+    info.pQueueCreateInfos = &queue_info;
+    info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
+    info.pEnabledFeatures = &enabled_features_;
+    VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
+    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+
+    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pool.queueFamilyIndex = queue_family_;
+    VK_CHECK(vkCreateCommandPool(device_, &pool, nullptr, &upload_pool_));
+}
+
+uint32_t VulkanContext::find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags wanted) const {
+    for (uint32_t i = 0; i < memory_.memoryTypeCount; ++i)
+        if ((type_bits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
+    throw VulkanError("no Vulkan memory type with the requested properties");
+}
+
+void VulkanContext::run_once(const std::function<void(VkCommandBuffer)>& record) const {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = upload_pool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    VK_CHECK(vkAllocateCommandBuffers(device_, &alloc, &cmd));
+    Handle<VkCommandBuffer> owner(cmd, [this](VkCommandBuffer c) { vkFreeCommandBuffers(device_, upload_pool_, 1, &c); });
+
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence;
+    VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &fence));
+    Handle<VkFence> fence_owner(fence, [this](VkFence f) { vkDestroyFence(device_, f, nullptr); });
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK_CHECK(vkQueueSubmit(queue_, 1, &submit, fence));
+    VK_CHECK(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
+}
+
+}  // namespace lab

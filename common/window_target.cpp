@@ -1,1 +1,219 @@
-// placeholder
+#include "window_target.h"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <utility>
+
+namespace lab {
+
+namespace {
+Handle<VkSemaphore> make_semaphore(VkDevice device) {
+    VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore semaphore;
+    VK_CHECK(vkCreateSemaphore(device, &info, nullptr, &semaphore));
+    return Handle<VkSemaphore>(semaphore, [device](VkSemaphore s) { vkDestroySemaphore(device, s, nullptr); });
+}
+
+VkSurfaceFormatKHR choose_surface_format(const VulkanContext& vk) {
+    uint32_t count = 0;
+    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(vk.physical_device(), vk.surface(), &count, nullptr));
+    std::vector<VkSurfaceFormatKHR> formats(count);
+    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(vk.physical_device(), vk.surface(), &count, formats.data()));
+    // An *_SRGB format, so the window shows exactly what the headless PNG holds.
+    for (const auto& f : formats)
+        if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+            f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
+            return f;
+    throw VulkanError("the window surface offers no 8-bit sRGB format");
+}
+}  // namespace
+
+// ---------------------------------------------------------------- Window
+
+Window::Window(const std::string& title, uint32_t width, uint32_t height) {
+    glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "GLFW error %d: %s\n", code, text); });
+    if (!glfwInit()) throw VulkanError("GLFW: cannot open a window (no display? use --headless)");
+    if (!glfwVulkanSupported()) {
+        glfwTerminate();
+        throw VulkanError("GLFW: no Vulkan loader found for windows (use --headless)");
+    }
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
+    if (!window_) {
+        glfwTerminate();
+        throw VulkanError("GLFW: cannot create a " + std::to_string(width) + "x" + std::to_string(height) + " window");
+    }
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
+        static_cast<Window*>(glfwGetWindowUserPointer(w))->resized_ = true;
+    });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
+        static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += float(dy);
+    });
+}
+
+Window::~Window() {
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+}
+
+bool Window::should_close() const { return glfwWindowShouldClose(window_); }
+bool Window::take_resized() { return std::exchange(resized_, false); }
+float Window::take_scroll() { return std::exchange(scroll_, 0.0f); }
+
+// ---------------------------------------------------------------- WindowTarget
+
+WindowTarget::WindowTarget(const VulkanContext& vk, Window& window)
+    : vk_(vk), window_(window), surface_format_(choose_surface_format(vk)),
+      render_pass_(make_render_pass(vk, surface_format_.format, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)), slots_(vk) {
+    for (auto& s : image_available_) s = make_semaphore(vk.device());
+    create_swapchain();
+}
+
+WindowTarget::~WindowTarget() {
+    vkDeviceWaitIdle(vk_.device());
+    destroy_swapchain_images();
+    vkDestroySwapchainKHR(vk_.device(), swapchain_, nullptr);
+}
+
+void WindowTarget::create_swapchain() {
+    VkSurfaceCapabilitiesKHR caps;
+    VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(vk_.physical_device(), vk_.surface(), &caps));
+    if (caps.currentExtent.width != UINT32_MAX) {
+        extent_ = caps.currentExtent;
+    } else {
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_.handle(), &w, &h);
+        extent_ = {std::clamp(uint32_t(w), caps.minImageExtent.width, caps.maxImageExtent.width),
+                   std::clamp(uint32_t(h), caps.minImageExtent.height, caps.maxImageExtent.height)};
+    }
+    uint32_t image_count = caps.minImageCount + 1;
+    if (caps.maxImageCount > 0) image_count = std::min(image_count, caps.maxImageCount);
+
+    VkSwapchainKHR old = swapchain_;
+    VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
+    info.surface = vk_.surface();
+    info.minImageCount = image_count;
+    info.imageFormat = surface_format_.format;
+    info.imageColorSpace = surface_format_.colorSpace;
+    info.imageExtent = extent_;
+    info.imageArrayLayers = 1;
+    info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.preTransform = caps.currentTransform;
+    info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
+    info.presentMode = VK_PRESENT_MODE_FIFO_KHR;  // vsync; the only mode every driver must offer
+    info.clipped = VK_TRUE;
+    info.oldSwapchain = old;
+    VK_CHECK(vkCreateSwapchainKHR(vk_.device(), &info, nullptr, &swapchain_));
+    if (old) vkDestroySwapchainKHR(vk_.device(), old, nullptr);
+
+    uint32_t count = 0;
+    VK_CHECK(vkGetSwapchainImagesKHR(vk_.device(), swapchain_, &count, nullptr));
+    images_.resize(count);
+    VK_CHECK(vkGetSwapchainImagesKHR(vk_.device(), swapchain_, &count, images_.data()));
+
+    VkDevice device = vk_.device();
+    depth_ = create_image_2d(vk_, extent_, vk_.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                             VK_IMAGE_ASPECT_DEPTH_BIT);
+    for (VkImage image : images_) {
+        VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        view_info.image = image;
+        view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        view_info.format = surface_format_.format;
+        view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VkImageView view;
+        VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &view));
+        views_.emplace_back(view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
+
+        VkImageView attachments[2] = {view, depth_.view};
+        VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+        fb_info.renderPass = render_pass_;
+        fb_info.attachmentCount = 2;
+        fb_info.pAttachments = attachments;
+        fb_info.width = extent_.width;
+        fb_info.height = extent_.height;
+        fb_info.layers = 1;
+        VkFramebuffer framebuffer;
+        VK_CHECK(vkCreateFramebuffer(device, &fb_info, nullptr, &framebuffer));
+        framebuffers_.emplace_back(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+        render_finished_.push_back(make_semaphore(device));
+    }
+}
+
+void WindowTarget::destroy_swapchain_images() {
+    framebuffers_.clear();
+    views_.clear();
+    render_finished_.clear();
+    depth_ = Image{};
+}
+
+void WindowTarget::recreate_swapchain() {
+    vkDeviceWaitIdle(vk_.device());
+    destroy_swapchain_images();
+    create_swapchain();
+}
+
+bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
+    // A minimized window has a 0×0 framebuffer: draw nothing, wait for events.
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_.handle(), &w, &h);
+    if (w == 0 || h == 0) {
+        glfwWaitEventsTimeout(0.1);
+        return false;
+    }
+    if (window_.take_resized()) recreate_swapchain();
+
+    slots_.wait(slot_);
+    VkResult acquired = vkAcquireNextImageKHR(vk_.device(), swapchain_, UINT64_MAX, image_available_[slot_],
+                                              VK_NULL_HANDLE, &image_index_);
+    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+        recreate_swapchain();
+        return false;
+    }
+    if (acquired != VK_SUBOPTIMAL_KHR) VK_CHECK(acquired);
+    slots_.reset_fence(slot_);  // only once we know we will submit, or the next wait would hang
+
+    frame.cmd = slots_.command_buffer(slot_);
+    frame.slot = slot_;
+    frame.extent = extent_;
+    begin_render_pass(frame.cmd, render_pass_, framebuffers_[image_index_], extent_, clear_linear);
+    return true;
+}
+
+void WindowTarget::end_frame() {
+    VkCommandBuffer cmd = slots_.command_buffer(slot_);
+    vkCmdEndRenderPass(cmd);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+
+    VkSemaphore wait = image_available_[slot_];
+    VkSemaphore signal = render_finished_[image_index_];
+    const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &wait;
+    submit.pWaitDstStageMask = &wait_stage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &signal;
+    VK_CHECK(vkQueueSubmit(vk_.queue(), 1, &submit, slots_.fence(slot_)));
+
+    VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+    present.waitSemaphoreCount = 1;
+    present.pWaitSemaphores = &signal;
+    present.swapchainCount = 1;
+    present.pSwapchains = &swapchain_;
+    present.pImageIndices = &image_index_;
+    VkResult presented = vkQueuePresentKHR(vk_.queue(), &present);
+    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || window_.take_resized())
+        recreate_swapchain();
+    else
+        VK_CHECK(presented);
+    slot_ = (slot_ + 1) % kFramesInFlight;
+}
+
+}  // namespace lab

@@ -1,1 +1,80 @@
-// placeholder
+#include "renderer.h"
+
+#include "mesh.h"
+#include "shader.h"
+
+#include <cstring>
+
+namespace {
+// Objects that share a mesh (and its tessellation) share one GPU copy.
+std::string mesh_key(const lab::ObjectDesc& object) {
+    return (object.mesh_path.empty() ? object.mesh : object.mesh_path) + "|" + std::to_string(object.segments) + "|" +
+           std::to_string(object.rings) + "|" + std::to_string(object.crease_deg) + "|" + std::to_string(object.normalize);
+}
+}  // namespace
+
+Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
+                   const std::string& shader_dir)
+    : vk_(vk) {
+    // Geometry: upload each distinct mesh once, remember what to draw.
+    for (const lab::ObjectDesc& object : scene.objects) {
+        const std::string key = mesh_key(object);
+        auto it = meshes_.find(key);
+        if (it == meshes_.end()) {
+            const lab::Mesh mesh = lab::make_mesh(object);
+            GpuMesh gpu{
+                lab::Buffer::device_local(vk, mesh.vertices.data(), mesh.vertices.size() * sizeof(lab::Vertex),
+                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT),
+                lab::Buffer::device_local(vk, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
+                                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT),
+                static_cast<uint32_t>(mesh.indices.size())};
+            it = meshes_.emplace(key, std::move(gpu)).first;
+        }
+        const lab::MaterialDesc& material = scene.materials.at(object.material);
+        items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
+    }
+
+    // One uniform buffer + descriptor set per frame in flight, so the CPU can
+    // write frame N+1's camera while the GPU still reads frame N's.
+    const std::vector<lab::DescriptorBinding> bindings = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT}};
+    set_layout_ = lab::make_descriptor_set_layout(vk, bindings);
+    pool_ = lab::make_descriptor_pool(vk, bindings, lab::RenderTarget::kFramesInFlight);
+    for (uint32_t slot = 0; slot < lab::RenderTarget::kFramesInFlight; ++slot) {
+        uniforms_.push_back(lab::Buffer::host_visible(vk, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
+        sets_.push_back(lab::allocate_descriptor_set(vk, pool_, set_layout_));
+        lab::write_buffer_descriptor(vk, sets_.back(), 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.back().get(),
+                                     sizeof(FrameUniforms));
+    }
+
+    vertex_shader_ = lab::load_shader(vk, shader_dir, "unlit.vert");
+    fragment_shader_ = lab::load_shader(vk, shader_dir, "unlit.frag");
+    pipeline_ = lab::PipelineBuilder()
+                    .shaders(vertex_shader_, fragment_shader_)
+                    .vertex_attributes(lab::kPosition)
+                    .descriptor_set(set_layout_)
+                    .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, sizeof(ObjectConstants))
+                    .build(vk, target.render_pass());
+}
+
+void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection) {
+    const FrameUniforms uniforms{view, projection};
+    std::memcpy(uniforms_[frame.slot].mapped(), &uniforms, sizeof uniforms);
+
+    VkCommandBuffer cmd = frame.cmd;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &sets_[frame.slot], 0, nullptr);
+    const GpuMesh* bound = nullptr;
+    for (const DrawItem& item : items_) {
+        if (item.mesh != bound) {  // objects sharing a mesh skip the rebind
+            const VkDeviceSize offset = 0;
+            VkBuffer vertex_buffer = item.mesh->vertices.get();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+            vkCmdBindIndexBuffer(cmd, item.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+            bound = item.mesh;
+        }
+        vkCmdPushConstants(cmd, pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(ObjectConstants), &item.constants);
+        vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
+    }
+}

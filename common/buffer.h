@@ -1,0 +1,47 @@
+// buffer.h — a VkBuffer with its own memory.
+//
+// Two kinds are enough for the labs:
+//  - host-visible buffers, mapped once for their whole life (uniforms, storage
+//    written every frame, readbacks);
+//  - device-local buffers filled once through a staging copy (vertices, indices).
+#pragma once
+
+#include "vk_context.h"
+
+#include <cstddef>
+
+namespace lab {
+
+class Buffer {
+public:
+    Buffer() = default;
+    // A host-visible, coherent, persistently mapped buffer.
+    static Buffer host_visible(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage);
+    // A device-local buffer holding `data` (uploaded through a temporary staging buffer).
+    static Buffer device_local(const VulkanContext& vk, const void* data, VkDeviceSize size,
+                               VkBufferUsageFlags usage);
+
+    VkBuffer get() const { return buffer_; }
+    VkDeviceSize size() const { return size_; }
+    void* mapped() const { return mapped_; }  // nullptr for device-local buffers
+
+private:
+    Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory);
+
+    Handle<VkBuffer> buffer_;
+    Handle<VkDeviceMemory> memory_;
+    VkDeviceSize size_ = 0;
+    void* mapped_ = nullptr;
+};
+
+// An image with its memory and one view (render targets, textures).
+struct Image {
+    Handle<VkImage> image;
+    Handle<VkDeviceMemory> memory;
+    Handle<VkImageView> view;
+};
+
+Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                      VkImageAspectFlags aspect);
+
+}  // namespace lab

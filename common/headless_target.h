@@ -1,0 +1,35 @@
+// headless_target.h — render into an offscreen colour + depth image, read it back as a PNG.
+#pragma once
+
+#include "render_target.h"
+
+namespace lab {
+
+class HeadlessTarget : public RenderTarget {
+public:
+    // 8-bit sRGB: the hardware encodes the shader's linear colour on write.
+    static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+
+    HeadlessTarget(const VulkanContext& vk, VkExtent2D extent);
+    ~HeadlessTarget() override;
+
+    VkRenderPass render_pass() const override { return render_pass_; }
+    VkExtent2D extent() const override { return extent_; }
+    bool begin_frame(const glm::vec3& clear_linear, Frame& frame) override;
+    void end_frame() override;
+
+    // Waits for all frames, copies the colour image to the host (row 0 = top).
+    Image8 read_pixels();
+
+private:
+    const VulkanContext& vk_;
+    VkExtent2D extent_;
+    Handle<VkRenderPass> render_pass_;
+    Image color_;
+    Image depth_;
+    Handle<VkFramebuffer> framebuffer_;
+    FrameSlots slots_;
+    uint32_t slot_ = 0;
+};
+
+}  // namespace lab

@@ -1,0 +1,88 @@
+// lab_app.h — the frame loop every lab shares: window or headless, UI, timing, benchmark, PNG.
+//
+// A lab's main() is:
+//     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
+//         ... create the lab's renderer ...
+//         app.run({update, ui, record, background});
+//     });
+// run_lab() turns every failure into one line on stderr and an exit code:
+// 0 success, 1 Vulkan/system failure or validation messages, 2 bad input.
+#pragma once
+
+#include "cli.h"
+#include "imgui_layer.h"
+#include "render_target.h"
+#include "scene.h"
+#include "vk_context.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lab {
+
+class Window;
+class HeadlessTarget;
+
+struct LabInfo {
+    std::string name;           // "lab1_camera": window title, default PNG name
+    std::string default_scene;  // absolute path of the lab's scene in scenes/
+};
+
+// What the mouse did since the last frame (zero while the pointer is over a UI panel).
+struct MouseInput {
+    glm::vec2 delta{0.0f};  // pixels moved
+    float scroll = 0.0f;     // wheel steps
+    bool left_down = false;
+};
+
+class LabApp {
+public:
+    struct Callbacks {
+        std::function<void(float dt_seconds)> update;          // input and animation
+        std::function<void()> ui;                              // ImGui panels (window mode only)
+        std::function<void(const Frame&)> record;              // draw commands inside the render pass
+        std::function<glm::vec3()> background;                 // clear colour (linear RGB)
+    };
+
+    LabApp(const LabInfo& info, const Options& options, int* validation_messages);
+    ~LabApp();
+
+    const Options& options() const { return options_; }
+    const VulkanContext& vk() const { return *vk_; }
+    RenderTarget& target() { return *target_; }
+    bool has_window() const { return window_ != nullptr; }
+
+    // Keyboard (false when headless or while an ImGui text field has focus).
+    bool key_down(int glfw_key) const;
+    bool key_pressed(int glfw_key);  // went down since the last frame
+    const MouseInput& mouse() const { return mouse_; }
+    float average_frame_ms() const { return average_frame_ms_; }
+
+    // Renders until the window closes or --frames/--benchmark are done; headless writes the PNG.
+    void run(const Callbacks& callbacks);
+
+private:
+    void poll_input();
+    void run_window(const Callbacks& callbacks);
+    void run_headless(const Callbacks& callbacks);
+
+    LabInfo info_;
+    Options options_;
+    std::unique_ptr<Window> window_;
+    std::unique_ptr<VulkanContext> vk_;
+    std::unique_ptr<RenderTarget> target_;
+    HeadlessTarget* headless_ = nullptr;  // == target_ when headless
+    std::unique_ptr<ImGuiLayer> ui_;
+    MouseInput mouse_;
+    glm::dvec2 last_cursor_{0.0};
+    bool have_cursor_ = false;
+    std::vector<int> keys_down_last_frame_;
+    float average_frame_ms_ = 0.0f;
+};
+
+int run_lab(int argc, char** argv, const LabInfo& info,
+            const std::function<void(LabApp& app, const Scene& scene)>& body);
+
+}  // namespace lab

@@ -1,0 +1,69 @@
+// pipeline_builder.h — a small builder for the graphics pipelines the labs use.
+//
+// Defaults: triangle list, fill, back-face culling with counter-clockwise
+// front faces (see docs/conventions.md: the projection flips Y), depth test
+// LESS with writes on, no blending, dynamic viewport and scissor (so a window
+// resize never rebuilds pipelines).
+#pragma once
+
+#include "mesh.h"
+#include "vk_context.h"
+
+#include <vector>
+
+namespace lab {
+
+// Which lab::Vertex members a shader reads, at locations 0, 1, 2, 3 in this order.
+enum VertexAttribute : unsigned {
+    kPosition = 1u << 0,
+    kNormal = 1u << 1,
+    kUv = 1u << 2,
+    kTangent = 1u << 3,
+};
+
+class PipelineBuilder {
+public:
+    PipelineBuilder& shaders(VkShaderModule vertex, VkShaderModule fragment);
+    PipelineBuilder& vertex_attributes(unsigned attribute_mask);
+    PipelineBuilder& descriptor_set(VkDescriptorSetLayout layout);
+    PipelineBuilder& push_constants(VkShaderStageFlags stages, uint32_t size);
+    PipelineBuilder& cull(VkCullModeFlags mode);
+    PipelineBuilder& depth(bool test, bool write);
+    PipelineBuilder& alpha_blend(bool enabled);
+    PipelineBuilder& topology(VkPrimitiveTopology topology);
+
+    struct Result {
+        Handle<VkPipelineLayout> layout;
+        Handle<VkPipeline> pipeline;
+    };
+    Result build(const VulkanContext& vk, VkRenderPass render_pass) const;
+
+private:
+    VkShaderModule vertex_ = VK_NULL_HANDLE;
+    VkShaderModule fragment_ = VK_NULL_HANDLE;
+    unsigned attributes_ = kPosition;
+    std::vector<VkDescriptorSetLayout> set_layouts_;
+    std::vector<VkPushConstantRange> push_ranges_;
+    VkCullModeFlags cull_ = VK_CULL_MODE_BACK_BIT;
+    bool depth_test_ = true;
+    bool depth_write_ = true;
+    bool blend_ = false;
+    VkPrimitiveTopology topology_ = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+};
+
+// One descriptor set layout from a list of (binding = index, type, stages).
+struct DescriptorBinding {
+    VkDescriptorType type;
+    VkShaderStageFlags stages;
+};
+Handle<VkDescriptorSetLayout> make_descriptor_set_layout(const VulkanContext& vk,
+                                                         const std::vector<DescriptorBinding>& bindings);
+// A pool big enough for `max_sets` sets of the given bindings.
+Handle<VkDescriptorPool> make_descriptor_pool(const VulkanContext& vk, const std::vector<DescriptorBinding>& bindings,
+                                              uint32_t max_sets);
+VkDescriptorSet allocate_descriptor_set(const VulkanContext& vk, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+// Points `binding` of `set` at a whole buffer.
+void write_buffer_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                             VkBuffer buffer, VkDeviceSize size);
+
+}  // namespace lab

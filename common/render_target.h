@@ -1,0 +1,60 @@
+// render_target.h — where frames go: a window (swapchain) or an offscreen image.
+//
+// A lab records the same commands in both modes: begin_frame() hands it a
+// command buffer inside a render pass that has already cleared colour and
+// depth and set the viewport; end_frame() submits (and presents).
+#pragma once
+
+#include "buffer.h"
+#include "image_io.h"
+#include "vk_context.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+
+namespace lab {
+
+struct Frame {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    uint32_t slot = 0;  // frame-in-flight slot: index per-frame resources (uniform buffers) with it
+    VkExtent2D extent{};
+};
+
+class RenderTarget {
+public:
+    static constexpr uint32_t kFramesInFlight = 2;
+
+    virtual ~RenderTarget() = default;
+    virtual VkRenderPass render_pass() const = 0;
+    virtual VkExtent2D extent() const = 0;
+    // Starts a frame cleared to `clear_linear` (linear RGB). Returns false when
+    // no frame can be drawn right now (minimized window, swapchain recreated).
+    virtual bool begin_frame(const glm::vec3& clear_linear, Frame& frame) = 0;
+    virtual void end_frame() = 0;
+};
+
+// The pieces both targets share: one render pass layout and per-slot command buffers + fences.
+Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_format, VkImageLayout color_final_layout);
+
+class FrameSlots {
+public:
+    explicit FrameSlots(const VulkanContext& vk);
+    // Waits until the slot's previous submission has finished.
+    void wait(uint32_t slot) const;
+    void reset_fence(uint32_t slot) const;
+    VkCommandBuffer command_buffer(uint32_t slot) const { return commands_[slot]; }
+    VkFence fence(uint32_t slot) const { return fences_[slot]; }
+
+private:
+    const VulkanContext& vk_;
+    Handle<VkCommandPool> pool_;
+    std::array<VkCommandBuffer, RenderTarget::kFramesInFlight> commands_{};
+    std::array<Handle<VkFence>, RenderTarget::kFramesInFlight> fences_;
+};
+
+// Begins `cmd` and the render pass, clears, sets viewport and scissor to `extent`.
+void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
+                       const glm::vec3& clear_linear);
+
+}  // namespace lab

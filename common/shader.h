@@ -1,0 +1,17 @@
+// shader.h — load a compiled SPIR-V shader from the lab's shader folder.
+//
+// Shaders are compiled by CMake at build time into build/shaders/<lab>/; the
+// folder is compiled into the binary (LAB_SHADER_DIR) and may be overridden
+// with the environment variable LAB_SHADER_DIR.
+#pragma once
+
+#include "vk_context.h"
+
+#include <string>
+
+namespace lab {
+
+// `compiled_dir` is the lab's LAB_SHADER_DIR; `name` e.g. "unlit.vert".
+Handle<VkShaderModule> load_shader(const VulkanContext& vk, const std::string& compiled_dir, const std::string& name);
+
+}  // namespace lab

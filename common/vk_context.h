@@ -1,0 +1,81 @@
+// vk_context.h — instance, validation, physical device, device and queue.
+//
+// One VulkanContext per program. It picks a device that can render (and
+// present, when given a window), enables only the optional features the
+// device really supports, and counts validation messages so a run with
+// --validate can fail on any of them.
+#pragma once
+
+#include "vk_check.h"
+#include "vk_handle.h"
+
+#include <vulkan/vulkan.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+struct GLFWwindow;
+
+namespace lab {
+
+struct ContextOptions {
+    bool validate = false;          // Khronos validation layer + debug messenger
+    GLFWwindow* window = nullptr;   // present to this window (nullptr: headless)
+    int* message_count = nullptr;   // optional: also counts validation messages here (outlives the context)
+};
+
+class VulkanContext {
+public:
+    explicit VulkanContext(const ContextOptions& options);
+    ~VulkanContext();
+    VulkanContext(const VulkanContext&) = delete;
+    VulkanContext& operator=(const VulkanContext&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physical_device() const { return physical_; }
+    VkDevice device() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    uint32_t queue_family() const { return queue_family_; }
+    VkSurfaceKHR surface() const { return surface_; }  // VK_NULL_HANDLE when headless
+    const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    // Optional features that are both supported and enabled (check before use).
+    const VkPhysicalDeviceFeatures& enabled_features() const { return enabled_features_; }
+
+    uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags wanted) const;
+    VkFormat depth_format() const { return depth_format_; }
+
+    // Records commands into a one-time command buffer, submits and waits.
+    // For uploads and readbacks — never inside the frame loop.
+    void run_once(const std::function<void(VkCommandBuffer)>& record) const;
+
+    // Validation messages (warnings and errors) seen so far.
+    int validation_messages() const { return validation_messages_; }
+
+private:
+    static VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT type,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
+    void create_instance(const ContextOptions& options);
+    void pick_physical_device();
+    void create_device();
+    void release();
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queue_family_ = 0;
+    VkCommandPool upload_pool_ = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceMemoryProperties memory_{};
+    VkPhysicalDeviceFeatures enabled_features_{};
+    VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
+    bool presenting_ = false;
+    int validation_messages_ = 0;
+    int* external_count_ = nullptr;
+};
+
+}  // namespace lab

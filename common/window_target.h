@@ -1,0 +1,71 @@
+// window_target.h — a GLFW window and the swapchain that presents to it.
+#pragma once
+
+#include "render_target.h"
+
+#include <string>
+#include <vector>
+
+struct GLFWwindow;
+
+namespace lab {
+
+// The GLFW window itself (created before Vulkan: the instance needs its extensions).
+class Window {
+public:
+    Window(const std::string& title, uint32_t width, uint32_t height);
+    ~Window();
+    Window(const Window&) = delete;
+    Window& operator=(const Window&) = delete;
+
+    GLFWwindow* handle() const { return window_; }
+    bool should_close() const;
+    // Set by the resize callback; cleared by whoever recreates the swapchain.
+    bool take_resized();
+    // Mouse-wheel steps since the last call.
+    float take_scroll();
+
+private:
+    GLFWwindow* window_ = nullptr;
+    bool resized_ = false;
+    float scroll_ = 0.0f;
+};
+
+class WindowTarget : public RenderTarget {
+public:
+    WindowTarget(const VulkanContext& vk, Window& window);
+    ~WindowTarget() override;
+
+    VkRenderPass render_pass() const override { return render_pass_; }
+    VkExtent2D extent() const override { return extent_; }
+    bool begin_frame(const glm::vec3& clear_linear, Frame& frame) override;
+    void end_frame() override;
+    uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
+
+private:
+    void create_swapchain();
+    void destroy_swapchain_images();
+    void recreate_swapchain();
+
+    const VulkanContext& vk_;
+    Window& window_;
+    VkSurfaceFormatKHR surface_format_{};
+    Handle<VkRenderPass> render_pass_;
+    VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+    VkExtent2D extent_{};
+    // Per swapchain image: its view, framebuffer and render-finished semaphore.
+    // (The semaphore must be per image, not per frame in flight: presentation
+    // may still hold it when the frame slot comes round again.)
+    std::vector<VkImage> images_;
+    std::vector<Handle<VkImageView>> views_;
+    std::vector<Handle<VkFramebuffer>> framebuffers_;
+    std::vector<Handle<VkSemaphore>> render_finished_;
+    Image depth_;
+    // Per frame in flight.
+    FrameSlots slots_;
+    std::array<Handle<VkSemaphore>, kFramesInFlight> image_available_;
+    uint32_t slot_ = 0;
+    uint32_t image_index_ = 0;
+};
+
+}  // namespace lab

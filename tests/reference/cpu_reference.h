@@ -1,0 +1,181 @@
+// cpu_reference.h — an independent, double-precision CPU ray caster: the test oracle.
+//
+// The GPU labs rasterise a scene; this file computes, for every pixel centre,
+// what that rasterisation *should* produce, straight from docs/conventions.md:
+//
+//   * one primary ray per pixel centre (x + ½, y + ½), row 0 = top of the image;
+//   * every triangle of every object (lab::make_mesh, the same geometry the GPU
+//     draws) moved to world space by M = T · Rz · Ry · Rx · S, built here in double;
+//   * back faces culled by the winding of the *transformed* triangle, exactly
+//     like the rasteriser (so a negative scale flips which side is the front);
+//   * the nearest hit whose view depth lies in [near, far] wins (what the
+//     near/far clip planes plus a LESS depth test produce).
+//
+// It deliberately shares no code with the labs' camera classes and uses none of
+// glm's lookAt / perspective helpers: an oracle that reuses the code under test
+// can only confirm that code's mistakes. glm is used only for vector storage
+// and plain arithmetic.
+//
+// Shading is pluggable: render_reference() finds the visible surface of every
+// pixel (a Hit) and hands it to a ShadeFn. Lab 1 draws unlit albedo
+// (shade_unlit); a later lab passes a Blinn-Phong ShadeFn using the same hits.
+#pragma once
+
+#include "image_io.h"
+#include "mesh.h"
+#include "scene.h"
+
+#include <glm/glm.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ref {
+
+// ---------------------------------------------------------------------------
+// Small double-precision helpers (exposed so the unit tests can check them).
+// ---------------------------------------------------------------------------
+
+// sin / cos of an angle in degrees; exact (0, ±1) at multiples of 90° so that
+// axis-aligned scenes stay exactly axis-aligned in the reference.
+double sin_deg(double degrees);
+double cos_deg(double degrees);
+
+// Rotations about the world axes (counter-clockwise looking down the axis
+// towards the origin, i.e. the right-hand rule), translation and scale.
+glm::dmat4 rotate_x(double degrees);
+glm::dmat4 rotate_y(double degrees);
+glm::dmat4 rotate_z(double degrees);
+glm::dmat4 translate(const glm::dvec3& t);
+glm::dmat4 scale(const glm::dvec3& s);
+
+// M = T(position) · Rz(rz) · Ry(ry) · Rx(rx) · S(scale), rotation_deg = [rx, ry, rz].
+glm::dmat4 model_matrix(const lab::ObjectDesc& object);
+
+// ---------------------------------------------------------------------------
+// Camera
+// ---------------------------------------------------------------------------
+
+// The camera as an orthonormal frame in world space plus the projection data.
+// Camera space: +X = right, +Y = up, the camera looks down −Z (forward = −Z axis).
+struct Camera {
+    glm::dvec3 eye{0.0};
+    glm::dvec3 right{1.0, 0.0, 0.0};
+    glm::dvec3 up{0.0, 1.0, 0.0};
+    glm::dvec3 forward{0.0, 0.0, -1.0};  // world direction of camera −Z
+    double fov_y_deg = 60.0;
+    double near_plane = 0.01;
+    double far_plane = 100.0;
+
+    // Camera-to-world matrix (columns right, up, −forward, eye) and its inverse, the view matrix.
+    glm::dmat4 camera_to_world() const;
+    glm::dmat4 view() const;
+};
+
+// Builds the camera of either mode (lookat with the documented fallbacks, or
+// transform mode C = T · Ry(yaw) · Rx(pitch) · Rz(roll)).
+Camera make_camera(const lab::CameraDesc& desc);
+
+// A ray origin + t · dir. Primary rays are built with a *non-normalised*
+// direction whose camera-space z is −1, so the ray parameter t of a hit is its
+// view depth (distance along the camera's −Z axis), the quantity the near and
+// far planes clip.
+struct Ray {
+    glm::dvec3 origin{0.0};
+    glm::dvec3 dir{0.0, 0.0, -1.0};
+};
+
+// The primary ray through the point (px, py) of a width × height image, in
+// pixel units (a pixel centre is (x + 0.5, y + 0.5); py grows downwards).
+Ray primary_ray(const Camera& camera, int width, int height, double px, double py);
+
+// ---------------------------------------------------------------------------
+// Ray / triangle intersection
+// ---------------------------------------------------------------------------
+
+struct TriangleHit {
+    double t = 0.0;   // ray parameter
+    double b1 = 0.0;  // barycentric weight of v1
+    double b2 = 0.0;  // barycentric weight of v2 (v0 gets 1 − b1 − b2)
+};
+
+// Watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2013) with back-face
+// culling: a triangle is hit only if its front side — counter-clockwise as seen
+// from the ray origin, i.e. dot(dir, (v1 − v0) × (v2 − v0)) < 0 — faces the ray.
+// Points exactly on an edge count as inside; two triangles sharing an edge never
+// leave a gap between them. Returns false for misses, back faces, degenerate
+// triangles and t outside [t_min, t_max].
+bool intersect_triangle(const Ray& ray, const glm::dvec3& v0, const glm::dvec3& v1,
+                        const glm::dvec3& v2, double t_min, double t_max, TriangleHit* hit);
+
+// ---------------------------------------------------------------------------
+// Rendering
+// ---------------------------------------------------------------------------
+
+// Everything known about the visible surface at one pixel.
+struct Hit {
+    bool hit = false;             // false: the ray sees the background
+    int object_id = -1;           // index into Scene::objects
+    int triangle_id = -1;         // triangle index within that object's mesh
+    double depth = 0.0;           // view depth (along camera −Z), in [near, far]
+    glm::dvec3 position{0.0};     // world-space hit point
+    glm::dvec3 normal{0.0};       // interpolated vertex normal × normal matrix, normalised
+    glm::dvec3 geometric_normal{0.0};  // normalised (v1 − v0) × (v2 − v0) in world space (front side)
+    glm::dvec2 uv{0.0};           // interpolated texture coordinates
+    std::string material;         // Scene::objects[object_id].material
+    glm::dvec3 view_dir{0.0};     // normalised direction from the hit point towards the eye
+};
+
+// Turns a hit (or a miss: hit.hit == false) into a linear RGB colour.
+using ShadeFn = std::function<glm::dvec3(const lab::Scene& scene, const Hit& hit)>;
+
+// Lab 1 shading: the material's albedo; the scene background for misses.
+glm::dvec3 shade_unlit(const lab::Scene& scene, const Hit& hit);
+
+struct RefImage {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::dvec3> linear;  // linear RGB, row 0 = top, width * height entries
+    std::vector<int> object_id;      // −1 = background
+    std::vector<int> triangle_id;    // −1 = background
+    std::vector<Hit> hits;           // full hit record per pixel (for lighting labs and tests)
+
+    int index(int x, int y) const { return y * width + x; }
+};
+
+// A scene's triangles in world space with a bounding-volume hierarchy over
+// them, built once and then traced any number of times.
+class SceneGeometry {
+public:
+    explicit SceneGeometry(const lab::Scene& scene);
+    ~SceneGeometry();
+    SceneGeometry(const SceneGeometry&) = delete;
+    SceneGeometry& operator=(const SceneGeometry&) = delete;
+
+    // Nearest front-facing hit with t in [t_min, t_max]; fills everything in
+    // Hit except `material` and `view_dir` when found.
+    bool trace(const Ray& ray, double t_min, double t_max, Hit* hit) const;
+
+    size_t triangle_count() const;
+
+private:
+    struct Impl;
+    Impl* impl_;
+};
+
+// Renders `scene` at width × height: one ray per pixel centre, nearest hit in
+// [near, far], shaded by `shade`.
+RefImage render_reference(const lab::Scene& scene, int width, int height,
+                          const ShadeFn& shade = shade_unlit);
+
+// The standard sRGB transfer curve (linear → encoded), for one channel in [0, 1].
+double srgb_encode(double linear);
+// Its inverse (encoded → linear).
+double srgb_decode(double encoded);
+
+// The PNG the GPU should produce: linear clamped to [0, 1], sRGB-encoded,
+// rounded to the nearest 8-bit value, alpha 255.
+lab::Image8 encode_srgb(const RefImage& image);
+
+}  // namespace ref
