@@ -34,6 +34,7 @@ HeadlessTarget::~HeadlessTarget() { vkDeviceWaitIdle(vk_.device()); }
 bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     slots_.wait(slot_);
     slots_.reset_fence(slot_);
+    ++frames_begun_;
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;
     frame.extent = extent_;
@@ -50,6 +51,12 @@ void HeadlessTarget::end_frame() {
     submit.pCommandBuffers = &cmd;
     VK_CHECK(vkQueueSubmit(vk_.queue(), 1, &submit, slots_.fence(slot_)));
     slot_ = (slot_ + 1) % kFramesInFlight;
+}
+
+void HeadlessTarget::wait_for_frame(uint64_t frame_number) const {
+    // Frame n used slot n % kFramesInFlight; its fence is reused only by frame n + kFramesInFlight.
+    if (frame_number + kFramesInFlight < frames_begun_) return;  // long done: its slot was reused since
+    slots_.wait(uint32_t(frame_number % kFramesInFlight));
 }
 
 Image8 HeadlessTarget::read_pixels() {

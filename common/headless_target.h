@@ -18,6 +18,8 @@ public:
     bool begin_frame(const glm::vec3& clear_linear, Frame& frame) override;
     void end_frame() override;
 
+    // Blocks until frame number `frame_number` (counting begin_frame calls from 0) has finished.
+    void wait_for_frame(uint64_t frame_number) const;
     // Waits for all frames, copies the colour image to the host (row 0 = top).
     Image8 read_pixels();
 
@@ -30,6 +32,7 @@ private:
     Handle<VkFramebuffer> framebuffer_;
     FrameSlots slots_;
     uint32_t slot_ = 0;
+    uint64_t frames_begun_ = 0;
 };
 
 }  // namespace lab

@@ -499,8 +499,6 @@ void validate_obj_text(const std::string& text, const std::string& file) {
         fail(file, 1, "UTF-16 text is not supported (save the file as UTF-8/ASCII)");
     }
     long count[3] = {0, 0, 0};       // v, vt, vn seen so far
-    long max_ref[3] = {0, 0, 0};     // largest positive index used
-    size_t max_ref_line[3] = {0, 0, 0};
     const char* kind_name[3] = {"vertex", "texture coordinate", "normal"};
     size_t line_no = 0, pos = 0;
     while (pos < text.size()) {
@@ -513,8 +511,11 @@ void validate_obj_text(const std::string& text, const std::string& file) {
         for (unsigned char c : line) {
             if (is_binary_byte(c)) fail(file, line_no, "binary data, not a text OBJ file");
         }
-        const std::vector<std::string_view> tok = split_ws(line);
+        std::vector<std::string_view> tok = split_ws(line);
         if (tok.empty() || tok[0][0] == '#') continue;
+        for (size_t i = 1; i < tok.size(); ++i) {
+            if (tok[i][0] == '#') tok.resize(i);  // a trailing comment
+        }
         const std::string_view key = tok[0];
         const size_t nargs = tok.size() - 1;
         if (key == "v" || key == "vt" || key == "vn") {
@@ -550,26 +551,16 @@ void validate_obj_text(const std::string& text, const std::string& file) {
                     long idx = 0;
                     if (!parse_index(part[k], idx)) fail(file, line_no, "bad index in " + quote(tok[i]));
                     if (idx == 0) fail(file, line_no, std::string(kind_name[k]) + " index 0 (OBJ indices start at 1)");
-                    if (idx < 0) {
-                        // Negative = relative to the elements read so far (−1 = the last one).
-                        if (-idx > count[k]) {
-                            fail(file, line_no, std::string(kind_name[k]) + " index " + std::to_string(idx) + " out of range (" +
-                                                    std::to_string(count[k]) + " defined so far)");
-                        }
-                    } else if (idx > max_ref[k]) {
-                        max_ref[k] = idx;
-                        max_ref_line[k] = line_no;
+                    // Negative = relative to the elements read so far (−1 = the last one);
+                    // positive ones must refer to elements already read too.
+                    if (idx > 0 ? idx > count[k] : idx < -count[k]) {
+                        fail(file, line_no, std::string(kind_name[k]) + " index " + std::to_string(idx) + " out of range (" +
+                                                std::to_string(count[k]) + " defined so far)");
                     }
                 }
             }
         }
         // Everything else (g, o, s, usemtl, mtllib, unknown keywords) is left to tinyobjloader.
-    }
-    for (int k = 0; k < 3; ++k) {
-        if (max_ref[k] > count[k]) {
-            fail(file, max_ref_line[k], std::string(kind_name[k]) + " index " + std::to_string(max_ref[k]) +
-                                            " out of range (file has " + std::to_string(count[k]) + ")");
-        }
     }
 }
 

@@ -389,6 +389,7 @@ TEST(Render, SphereHasNoPinholes) {
     // sphere must show it too (a crack between triangles would show background).
     lab::Scene s = base_scene();
     look(s, {0.3, 0.2, 1.6}, {0, 0, 0});
+    s.camera.fov_y_deg = 40.0f;  // the sphere fills most of the view
     lab::ObjectDesc sphere = object("sphere", "red", {0, 0, 0});
     sphere.segments = 64;
     sphere.rings = 32;
