@@ -100,8 +100,8 @@ void expect_matches_reference(const std::string& scene_file, const std::string& 
         ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png");
     EXPECT_TRUE(result.passed()) << scene_file << "\n" << result.describe();
     std::printf("[ compare ] %s: %s\n", name.c_str(), result.describe().c_str());
-    RecordProperty("max_diff_interior", result.max_diff_interior);
-    RecordProperty("percent_differing", std::to_string(100.0 * result.fraction_differing));
+    ::testing::Test::RecordProperty("max_diff_interior", result.max_diff_interior);
+    ::testing::Test::RecordProperty("percent_differing", std::to_string(100.0 * result.fraction_differing));
 }
 
 // --- scenes ---------------------------------------------------------------------
