@@ -692,6 +692,25 @@ TEST_F(CompareFixture, EdgeMaskIsTheBoundaryBand) {
     EXPECT_EQ(count, 34u * 34u - 30u * 30u);
 }
 
+TEST_F(CompareFixture, OptionalTriangleAndGrazingEdges) {
+    // The plane's two triangles meet on the diagonal from its bottom-left to
+    // its top-right corner: with triangle_edges that seam joins the mask.
+    ref::CompareOptions options;
+    options.triangle_edges = true;
+    const std::vector<uint8_t> mask = ref::edge_mask(reference, options);
+    EXPECT_TRUE(mask[reference.index(31, 32)] != 0);   // on the diagonal
+    EXPECT_FALSE(mask[reference.index(20, 20)] != 0);  // top-left triangle, away from the seam
+    EXPECT_FALSE(mask[reference.index(40, 40)] != 0);  // bottom-right triangle
+    // The plane is seen at most ~35° off its normal: a grazing threshold of
+    // cos 30° < 0.82 marks none of it, cos 0 = 1 marks all of it.
+    options.triangle_edges = false;
+    options.grazing_cos = 0.8;
+    EXPECT_FALSE(ref::edge_mask(reference, options)[reference.index(30, 30)] != 0);
+    options.grazing_cos = 1.0;
+    EXPECT_TRUE(ref::edge_mask(reference, options)[reference.index(30, 30)] != 0);
+    EXPECT_FALSE(ref::edge_mask(reference, options)[reference.index(2, 2)] != 0);  // background
+}
+
 TEST_F(CompareFixture, IdenticalImagesPass) {
     const ref::CompareResult r = ref::compare_images(expected, reference);
     EXPECT_TRUE(r.passed()) << r.describe();

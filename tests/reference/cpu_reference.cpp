@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -518,9 +519,20 @@ RefImage render_reference(const lab::Scene& scene, int width, int height, const 
     if (threads <= 1 || n < 4096) {
         render_rows(0, 1);
     } else {
+        // An exception in a worker (e.g. from `shade`) is passed on to the caller.
+        std::vector<std::exception_ptr> errors(threads);
         std::vector<std::thread> pool;
-        for (int t = 0; t < threads; ++t) pool.emplace_back(render_rows, t, threads);
+        for (int t = 0; t < threads; ++t)
+            pool.emplace_back([&, t] {
+                try {
+                    render_rows(t, threads);
+                } catch (...) {
+                    errors[t] = std::current_exception();
+                }
+            });
         for (std::thread& t : pool) t.join();
+        for (const std::exception_ptr& e : errors)
+            if (e) std::rethrow_exception(e);
     }
     return image;
 }

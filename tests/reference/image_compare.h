@@ -67,9 +67,10 @@ CompareResult compare_images(const lab::Image8& actual, const RefImage& referenc
                              const CompareOptions& options = {});
 
 // Writes a visualisation, three panels side by side: expected | actual | diff.
-// In the diff panel: black = equal, dark blue = edge pixel within tolerance,
-// yellow = edge pixel beyond tolerance, red (brighter = larger) = interior pixel
-// beyond tolerance, dark red = interior pixel different but within tolerance.
+// In the diff panel: black = equal (very dark blue on the edge mask),
+// blue = edge pixel different but within tolerance, yellow = edge pixel beyond
+// tolerance, red (brighter = larger) = interior pixel beyond tolerance,
+// dark red = interior pixel different but within tolerance.
 void write_diff_png(const std::string& path, const lab::Image8& actual, const RefImage& reference,
                     const CompareResult& result);
 
