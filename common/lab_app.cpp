@@ -95,8 +95,10 @@ void LabApp::run(const Callbacks& callbacks) {
 }
 
 void LabApp::run_window(const Callbacks& cb) {
-    auto last = Clock::now();
-    for (int frame_count = 0; !window_->should_close(); ) {
+    const auto start = Clock::now();
+    auto last = start;
+    int frame_count = 0;
+    while (!window_->should_close()) {
         poll_input();
         const auto now = Clock::now();
         const float dt = std::chrono::duration<float>(now - last).count();
@@ -107,14 +109,18 @@ void LabApp::run_window(const Callbacks& cb) {
         cb.update(dt);
         Frame frame;
         if (!target_->begin_frame(cb.background(), frame)) continue;
+        if (options_.frames <= 0) ++frame_count;
         ui_->new_frame();
         cb.ui();
         cb.record(frame);
         ui_->render(frame.cmd);
         target_->end_frame();
-        if (options_.frames > 0 && ++frame_count >= options_.frames) break;
+        if (options_.frames > 0 && ++frame_count >= options_.frames) break;  // --frames N: screenshots, tests
     }
     vkDeviceWaitIdle(vk_->device());
+    const double seconds = ms_since(start) / 1000.0;
+    std::printf("%s: %d frames in %.1f s (%.1f ms/frame average)\n", info_.name.c_str(), frame_count, seconds,
+                frame_count ? 1000.0 * seconds / frame_count : 0.0);
 }
 
 void LabApp::run_headless(const Callbacks& cb) {

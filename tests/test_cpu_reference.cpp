@@ -584,6 +584,14 @@ TEST(Render, CustomShadeFunctionSeesHits) {
     expect_near(img.linear[img.index(0, 0)], {1, 0, 1}, 0, "miss shade");
 }
 
+TEST(Render, ShadeErrorsReachTheCaller) {
+    // Large enough to be rendered on several threads.
+    lab::Scene s = base_scene();
+    look(s, {0, 0, 2}, {0, 0, 0});
+    s.objects.push_back(facing_plus_z("no such material", {0, 0, 0}, 2.0f));
+    EXPECT_THROW(ref::render_reference(s, 128, 128), std::runtime_error);
+}
+
 TEST(Render, DeterministicAndFastEnough) {
     // A scene like the lab's default, at full HD-ish resolution. Prints the time
     // (the oracle must stay usable at 1280×720).
