@@ -424,6 +424,7 @@ constexpr double kMaxCoordinate = 1e6;              // |x| above this is rejecte
 constexpr std::uintmax_t kMaxObjBytes = 1u << 30;   // 1 GiB
 constexpr std::uintmax_t kMaxMtlBytes = 64u << 20;  // 64 MiB
 constexpr size_t kMaxFanForCrease = 4096;           // see compute_crease_normals
+constexpr size_t kMaxFaceCorners = 4096;            // ear clipping costs ~corners² per face
 
 [[noreturn]] void fail(const std::string& file, size_t line, const std::string& reason) {
     std::string msg = file;
@@ -533,6 +534,10 @@ void validate_obj_text(const std::string& text, const std::string& file) {
             if (nargs < need) {
                 fail(file, line_no, std::string(key == "f" ? "face" : key == "l" ? "line" : "point") + " with " +
                                         std::to_string(nargs) + " vertices (at least " + std::to_string(need) + " needed)");
+            }
+            if (key == "f" && nargs > kMaxFaceCorners) {
+                fail(file, line_no, "face with " + std::to_string(nargs) + " vertices (limit " +
+                                        std::to_string(kMaxFaceCorners) + ")");
             }
             for (size_t i = 1; i < tok.size(); ++i) {
                 // v, v/vt, v//vn or v/vt/vn

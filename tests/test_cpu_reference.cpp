@@ -89,7 +89,7 @@ void expect_near(const dvec3& a, const dvec3& b, double eps, const char* what) {
 // Matrices
 // ---------------------------------------------------------------------------
 
-TEST(Matrices, ExactRightAngles) {
+TEST(RefMatrices, ExactRightAngles) {
     EXPECT_EQ(ref::sin_deg(90.0), 1.0);
     EXPECT_EQ(ref::cos_deg(90.0), 0.0);
     EXPECT_EQ(ref::cos_deg(180.0), -1.0);
@@ -99,14 +99,14 @@ TEST(Matrices, ExactRightAngles) {
     EXPECT_NEAR(ref::cos_deg(-60.0), 0.5, 1e-15);
 }
 
-TEST(Matrices, RotationsFollowTheRightHandRule) {
+TEST(RefMatrices, RotationsFollowTheRightHandRule) {
     // +90° about Z turns +X into +Y; about X turns +Y into +Z; about Y turns +Z into +X.
     expect_near(dvec3(ref::rotate_z(90) * glm::dvec4(1, 0, 0, 1)), {0, 1, 0}, 0, "Rz");
     expect_near(dvec3(ref::rotate_x(90) * glm::dvec4(0, 1, 0, 1)), {0, 0, 1}, 0, "Rx");
     expect_near(dvec3(ref::rotate_y(90) * glm::dvec4(0, 0, 1, 1)), {1, 0, 0}, 0, "Ry");
 }
 
-TEST(Matrices, ModelMatrixOrderIsTRzRyRxS) {
+TEST(RefMatrices, ModelMatrixOrderIsTRzRyRxS) {
     // rotation [90, 90, 0], scale (2, 3, 4), position (1, 2, 3), applied to (0, 1, 0):
     //   S → (0, 3, 0); Rx(90) → (0, 0, 3); Ry(90) → (3, 0, 0); T → (4, 2, 3).
     // (Rx applied after Ry would give (0, 3, 0) → (0, 3, 0) → (0, 0, 3) → (1, 2, 6).)
@@ -117,7 +117,7 @@ TEST(Matrices, ModelMatrixOrderIsTRzRyRxS) {
     expect_near(dvec3(ref::model_matrix(o) * glm::dvec4(0, 0, 1, 1)), {0, 1, 0}, 1e-15, "Rz·Ry");
 }
 
-TEST(Matrices, LabModelMatrixAgreesWithReference) {
+TEST(RefMatrices, LabModelMatrixAgreesWithReference) {
     // Cross-check of two independent implementations of the same convention.
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> angle(-360.0f, 360.0f), pos(-10.0f, 10.0f), sc(0.1f, 3.0f);
@@ -136,7 +136,7 @@ TEST(Matrices, LabModelMatrixAgreesWithReference) {
 // Camera
 // ---------------------------------------------------------------------------
 
-TEST(Camera, LookAtFrame) {
+TEST(RefCamera, LookAtFrame) {
     lab::CameraDesc c;
     c.position = {0, 0, 5};
     c.target = {0, 0, 0};
@@ -153,7 +153,7 @@ TEST(Camera, LookAtFrame) {
         for (int j = 0; j < 4; ++j) EXPECT_NEAR(id[i][j], i == j ? 1.0 : 0.0, 1e-15);
 }
 
-TEST(Camera, LookStraightDownUsesMinusZAsUp) {
+TEST(RefCamera, LookStraightDownUsesMinusZAsUp) {
     // f = −Y is parallel to up = +Y: up' = sign(f·up)·Z = −Z, so the image top is
     // world −Z and the image right is f × up' = (−Y) × (−Z) = +X.
     lab::CameraDesc c;
@@ -171,7 +171,7 @@ TEST(Camera, LookStraightDownUsesMinusZAsUp) {
     expect_near(up_cam.up, {0, 0, 1}, 0, "up (looking up)");
 }
 
-TEST(Camera, EyeEqualsTargetLooksDownMinusZ) {
+TEST(RefCamera, EyeEqualsTargetLooksDownMinusZ) {
     lab::CameraDesc c;
     c.position = {1, 2, 3};
     c.target = {1, 2, 3};
@@ -181,7 +181,7 @@ TEST(Camera, EyeEqualsTargetLooksDownMinusZ) {
     expect_near(cam.up, {0, 1, 0}, 0, "up");
 }
 
-TEST(Camera, TransformModeAngles) {
+TEST(RefCamera, TransformModeAngles) {
     lab::CameraDesc c;
     c.mode = lab::CameraDesc::Mode::Transform;
     c.position = {1, 2, 3};
@@ -213,7 +213,7 @@ TEST(Camera, TransformModeAngles) {
     expect_near(cam.eye, {1, 2, 3}, 0, "eye");
 }
 
-TEST(Camera, PrimaryRayThroughPixelCentres) {
+TEST(RefCamera, PrimaryRayThroughPixelCentres) {
     lab::CameraDesc c;
     c.position = {0, 0, 0};
     c.target = {0, 0, -1};
@@ -233,7 +233,7 @@ TEST(Camera, PrimaryRayThroughPixelCentres) {
 // Triangle intersection
 // ---------------------------------------------------------------------------
 
-TEST(Intersect, FrontFaceHitBackFaceCulled) {
+TEST(RefIntersect, FrontFaceHitBackFaceCulled) {
     // Triangle in z = 0, counter-clockwise seen from +Z.
     const dvec3 v0(-1, -1, 0), v1(1, -1, 0), v2(0, 1, 0);
     ref::Ray from_front{{0, 0, 5}, {0, 0, -1}};
@@ -255,7 +255,7 @@ TEST(Intersect, FrontFaceHitBackFaceCulled) {
     EXPECT_FALSE(ref::intersect_triangle(ref::Ray{{-5, 0, 0}, {1, 0, 0}}, v0, v1, v2, 0, 100, &h));
 }
 
-TEST(Intersect, EdgesAndVerticesCountAsInside) {
+TEST(RefIntersect, EdgesAndVerticesCountAsInside) {
     const dvec3 v0(-1, -1, 0), v1(1, -1, 0), v2(0, 1, 0);
     ref::TriangleHit h;
     // Exactly on the bottom edge and exactly on a vertex.
@@ -265,7 +265,7 @@ TEST(Intersect, EdgesAndVerticesCountAsInside) {
     EXPECT_DOUBLE_EQ(h.b2, 1.0);
 }
 
-TEST(Intersect, SharedEdgesAreWatertight) {
+TEST(RefIntersect, SharedEdgesAreWatertight) {
     // Two triangles sharing the edge a–b, both facing the ray origin region.
     // Rays aimed at points along the shared edge (which after rounding may lie
     // a hair to either side) must hit at least one of the two triangles.
@@ -308,7 +308,7 @@ TEST(Intersect, SharedEdgesAreWatertight) {
     EXPECT_EQ(misses, 0);
 }
 
-TEST(Intersect, SharedVertexOfAFanIsHit) {
+TEST(RefIntersect, SharedVertexOfAFanIsHit) {
     // Six triangles around the centre vertex, all counter-clockwise from +Z;
     // a ray exactly through the centre must hit one of them.
     const dvec3 centre(0.1, 0.2, -3.0);
@@ -327,7 +327,7 @@ TEST(Intersect, SharedVertexOfAFanIsHit) {
 // Rendering: coverage worked out by hand
 // ---------------------------------------------------------------------------
 
-TEST(Render, PlaneCoverageByHand) {
+TEST(RefRender, PlaneCoverageByHand) {
     // Camera at (0,0,2) looking at the origin, fov 90°, 8×8. A 2×2 plane in z = 0
     // facing the camera spans x, y ∈ [−1, 1] at depth 2: ndc ∈ [−0.5, 0.5].
     // Pixel centres at ndc ±0.125 and ±0.375 are inside, ±0.625 outside: pixels 2..5.
@@ -359,7 +359,7 @@ TEST(Render, PlaneCoverageByHand) {
     expect_near(h.view_dir, glm::normalize(dvec3(0.75, -0.75, 2)), 1e-12, "view dir");
 }
 
-TEST(Render, NonSquareAspect) {
+TEST(RefRender, NonSquareAspect) {
     // 16×8 (aspect 2), fov 90°, camera at depth 2 from a 2×2 plane: horizontal
     // ndc = x / (2·aspect) ∈ [−0.25, 0.25], vertical ndc = y / 2 ∈ [−0.5, 0.5].
     // Columns: centres (k + 0.5)/8 − 1 → ±0.0625, ±0.1875 inside (k = 6..9).
@@ -371,7 +371,7 @@ TEST(Render, NonSquareAspect) {
     EXPECT_EQ(pixels_of(img, 0), rect(6, 9, 2, 5));
 }
 
-TEST(Render, DiagonalEdgeOfAQuadLeavesNoGap) {
+TEST(RefRender, DiagonalEdgeOfAQuadLeavesNoGap) {
     // The plane fills the whole 8×8 view (ndc ±1); its two triangles share the
     // diagonal from (−1,−1) to (1,1), which passes exactly through the centres
     // of pixels (k, 7 − k). Every pixel must be covered.
@@ -384,7 +384,7 @@ TEST(Render, DiagonalEdgeOfAQuadLeavesNoGap) {
     EXPECT_EQ(triangles, (std::set<int>{0, 1}));
 }
 
-TEST(Render, SphereHasNoPinholes) {
+TEST(RefRender, SphereHasNoPinholes) {
     // A finely tessellated sphere: every pixel whose four neighbours show the
     // sphere must show it too (a crack between triangles would show background).
     lab::Scene s = base_scene();
@@ -406,7 +406,7 @@ TEST(Render, SphereHasNoPinholes) {
     EXPECT_GT(pixels_of(img, 0).size(), 10000u);
 }
 
-TEST(Render, SphereHitData) {
+TEST(RefRender, SphereHitData) {
     // 9×9 image: pixel (4, 4) is the exact image centre. The default UV sphere
     // (radius 0.5) has a vertex at (0, 0, 0.5) with normal +Z, facing the camera.
     lab::Scene s = base_scene();
@@ -422,7 +422,7 @@ TEST(Render, SphereHitData) {
     EXPECT_NEAR(h.uv.y, 0.5, 1e-6);  // the equator
 }
 
-TEST(Render, BackFacesAreCulled) {
+TEST(RefRender, BackFacesAreCulled) {
     // The plane's front is +Y: seen from above it is visible, from below not.
     lab::Scene s = base_scene();
     // Side 8: ±4 at depth 3 is ndc ±4/3, the whole view.
@@ -438,7 +438,7 @@ TEST(Render, BackFacesAreCulled) {
     EXPECT_TRUE(pixels_of(ref::render_reference(inside, 16, 16), 0).empty());
 }
 
-TEST(Render, NegativeScaleFlipsTheFrontFace) {
+TEST(RefRender, NegativeScaleFlipsTheFrontFace) {
     // Mirroring in X reverses the winding of the transformed triangles: the
     // plane's front now faces −Y, as the GPU's winding test sees it.
     lab::Scene s = base_scene();
@@ -455,7 +455,7 @@ TEST(Render, NegativeScaleFlipsTheFrontFace) {
     EXPECT_EQ(pixels_of(ref::render_reference(s, 8, 8), 0), rect(0, 7, 0, 7));
 }
 
-TEST(Render, NearerObjectWinsWhateverTheOrder) {
+TEST(RefRender, NearerObjectWinsWhateverTheOrder) {
     // Red 2×2 plane at z = 0 (depth 2, ndc ±0.5: pixels 2..5), green 1×1 plane
     // at z = 0.5 (depth 1.5, ndc ±1/3: pixels 3..4 only, 0.375 > 1/3).
     for (int order = 0; order < 2; ++order) {
@@ -474,7 +474,7 @@ TEST(Render, NearerObjectWinsWhateverTheOrder) {
     }
 }
 
-TEST(Render, NearAndFarPlanesClip) {
+TEST(RefRender, NearAndFarPlanesClip) {
     lab::Scene s = base_scene();
     look(s, {0, 0, 2}, {0, 0, 0});
     s.objects.push_back(facing_plus_z("red", {0, 0, 0}, 2.0f));      // depth 2
@@ -505,7 +505,7 @@ TEST(Render, NearAndFarPlanesClip) {
     EXPECT_EQ(pixels_of(img, 0), rect(2, 5, 2, 5));
 }
 
-TEST(Render, TransformCameraYaw90LooksDownMinusX) {
+TEST(RefRender, TransformCameraYaw90LooksDownMinusX) {
     lab::Scene s = base_scene();
     s.camera.mode = lab::CameraDesc::Mode::Transform;
     s.camera.position = {0, 0, 0};
@@ -524,7 +524,7 @@ TEST(Render, TransformCameraYaw90LooksDownMinusX) {
     EXPECT_EQ(pixels_of(img, 1), rect(3, 4, 3, 4));
 }
 
-TEST(Render, TransformCameraRollTiltsImageClockwise) {
+TEST(RefRender, TransformCameraRollTiltsImageClockwise) {
     // A unit cube at (−1, 0, −5), fov 90°, 16×16 (pixel centres ±0.0625, ±0.1875,
     // ±0.3125, ...). Its front face is at depth 4.5.
     // No roll: x ∈ [−1.5, −0.5] → ndc [−1/3, −1/9] → columns 5, 6;
@@ -545,7 +545,7 @@ TEST(Render, TransformCameraRollTiltsImageClockwise) {
     EXPECT_EQ(pixels_of(ref::render_reference(s, 8, 8), 0), rect(3, 4, 3, 4));
 }
 
-TEST(Render, TopDownLookAtIsAMapView) {
+TEST(RefRender, TopDownLookAtIsAMapView) {
     // Camera at (0, 10, 0) looking down with up = +Y: the image top is world −Z,
     // the right is +X (docs/conventions.md). Fov 90°, 16×16.
     // Cube of side 2 at (0, 0, −4): its top face (y = 1, depth 9) spans
@@ -564,14 +564,14 @@ TEST(Render, TopDownLookAtIsAMapView) {
     EXPECT_EQ(pixels_of(img, 1), rect(10, 11, 7, 8));
 }
 
-TEST(Render, EyeEqualsTargetLooksDownMinusZ) {
+TEST(RefRender, EyeEqualsTargetLooksDownMinusZ) {
     lab::Scene s = base_scene();
     look(s, {0, 0, 0}, {0, 0, 0});
     s.objects.push_back(facing_plus_z("red", {0, 0, -5}, 2.0f));
     EXPECT_EQ(pixels_of(ref::render_reference(s, 8, 8), 0), rect(3, 4, 3, 4));
 }
 
-TEST(Render, CustomShadeFunctionSeesHits) {
+TEST(RefRender, CustomShadeFunctionSeesHits) {
     lab::Scene s = base_scene();
     look(s, {0, 0, 2}, {0, 0, 0});
     s.objects.push_back(facing_plus_z("red", {0, 0, 0}, 2.0f));
@@ -584,7 +584,7 @@ TEST(Render, CustomShadeFunctionSeesHits) {
     expect_near(img.linear[img.index(0, 0)], {1, 0, 1}, 0, "miss shade");
 }
 
-TEST(Render, ShadeErrorsReachTheCaller) {
+TEST(RefRender, ShadeErrorsReachTheCaller) {
     // Large enough to be rendered on several threads.
     lab::Scene s = base_scene();
     look(s, {0, 0, 2}, {0, 0, 0});
@@ -592,7 +592,7 @@ TEST(Render, ShadeErrorsReachTheCaller) {
     EXPECT_THROW(ref::render_reference(s, 128, 128), std::runtime_error);
 }
 
-TEST(Render, DeterministicAndFastEnough) {
+TEST(RefRender, DeterministicAndFastEnough) {
     // A scene like the lab's default, at full HD-ish resolution. Prints the time
     // (the oracle must stay usable at 1280×720).
     lab::Scene s = base_scene();
@@ -635,7 +635,7 @@ int encoded(double linear) {
     return out.rgba[0];
 }
 
-TEST(Srgb, KnownValues) {
+TEST(RefSrgb, KnownValues) {
     EXPECT_EQ(encoded(0.0), 0);
     EXPECT_EQ(encoded(1.0), 255);
     // 1.055 · 0.5^(1/2.4) − 0.055 = 0.735361 → ·255 = 187.516 → 188
@@ -658,7 +658,7 @@ TEST(Srgb, KnownValues) {
     EXPECT_EQ(encoded(7.0), 255);
 }
 
-TEST(Srgb, EveryCodeRoundTrips) {
+TEST(RefSrgb, EveryCodeRoundTrips) {
     // Decoding code k to linear and encoding again must give k back (the two
     // curves are written independently).
     for (int k = 0; k <= 255; ++k) EXPECT_EQ(encoded(ref::srgb_decode(k / 255.0)), k) << k;
@@ -668,7 +668,7 @@ TEST(Srgb, EveryCodeRoundTrips) {
 // Image comparison
 // ---------------------------------------------------------------------------
 
-struct CompareFixture : ::testing::Test {
+struct RefCompare : ::testing::Test {
     ref::RefImage reference;
     lab::Image8 expected;
     void SetUp() override {
@@ -682,7 +682,7 @@ struct CompareFixture : ::testing::Test {
     // Plane spans ndc ±0.5 → pixels 16..47 (centres ndc (k+0.5)/32 − 1).
 };
 
-TEST_F(CompareFixture, EdgeMaskIsTheBoundaryBand) {
+TEST_F(RefCompare, EdgeMaskIsTheBoundaryBand) {
     EXPECT_EQ(pixels_of(reference, 0), rect(16, 47, 16, 47));
     const std::vector<uint8_t> mask = ref::edge_mask(reference);
     auto at = [&](int x, int y) { return mask[reference.index(x, y)] != 0; };
@@ -700,7 +700,7 @@ TEST_F(CompareFixture, EdgeMaskIsTheBoundaryBand) {
     EXPECT_EQ(count, 34u * 34u - 30u * 30u);
 }
 
-TEST_F(CompareFixture, OptionalTriangleAndGrazingEdges) {
+TEST_F(RefCompare, OptionalTriangleAndGrazingEdges) {
     // The plane's two triangles meet on the diagonal from its bottom-left to
     // its top-right corner: with triangle_edges that seam joins the mask.
     ref::CompareOptions options;
@@ -719,7 +719,7 @@ TEST_F(CompareFixture, OptionalTriangleAndGrazingEdges) {
     EXPECT_FALSE(ref::edge_mask(reference, options)[reference.index(2, 2)] != 0);  // background
 }
 
-TEST_F(CompareFixture, IdenticalImagesPass) {
+TEST_F(RefCompare, IdenticalImagesPass) {
     const ref::CompareResult r = ref::compare_images(expected, reference);
     EXPECT_TRUE(r.passed()) << r.describe();
     EXPECT_EQ(r.max_diff_all, 0);
@@ -727,7 +727,7 @@ TEST_F(CompareFixture, IdenticalImagesPass) {
     EXPECT_EQ(r.worst_x, -1);
 }
 
-TEST_F(CompareFixture, OffByOneInteriorPasses) {
+TEST_F(RefCompare, OffByOneInteriorPasses) {
     lab::Image8 actual = expected;
     actual.rgba[4 * reference.index(30, 30) + 1] += 1;
     const ref::CompareResult r = ref::compare_images(actual, reference);
@@ -736,7 +736,7 @@ TEST_F(CompareFixture, OffByOneInteriorPasses) {
     EXPECT_EQ(r.differing_pixels, 0u);
 }
 
-TEST_F(CompareFixture, InteriorDifferenceFailsAndIsLocated) {
+TEST_F(RefCompare, InteriorDifferenceFailsAndIsLocated) {
     lab::Image8 actual = expected;
     actual.rgba[4 * reference.index(20, 40) + 2] += 2;
     actual.rgba[4 * reference.index(5, 6) + 0] += 9;
@@ -749,7 +749,7 @@ TEST_F(CompareFixture, InteriorDifferenceFailsAndIsLocated) {
     EXPECT_NE(r.describe().find("(5, 6)"), std::string::npos) << r.describe();
 }
 
-TEST_F(CompareFixture, EdgeDifferencesAreToleratedUpToAFraction) {
+TEST_F(RefCompare, EdgeDifferencesAreToleratedUpToAFraction) {
     // A whole silhouette column rendered as background (a coverage rounding
     // difference): 32 of 4096 pixels = 0.78% > 0.5% → fails overall, but
     // interior stays clean. Half of it (16 px = 0.39%) passes.
@@ -770,7 +770,7 @@ TEST_F(CompareFixture, EdgeDifferencesAreToleratedUpToAFraction) {
     EXPECT_GT(r.max_diff_all, 100);
 }
 
-TEST_F(CompareFixture, AlphaAndSizeAreChecked) {
+TEST_F(RefCompare, AlphaAndSizeAreChecked) {
     lab::Image8 actual = expected;
     actual.rgba[4 * reference.index(30, 30) + 3] = 0;
     EXPECT_FALSE(ref::compare_images(actual, reference).passed());
@@ -781,7 +781,7 @@ TEST_F(CompareFixture, AlphaAndSizeAreChecked) {
     EXPECT_FALSE(r.passed());
 }
 
-TEST_F(CompareFixture, FailureWritesADiffImage) {
+TEST_F(RefCompare, FailureWritesADiffImage) {
     lab::Image8 actual = expected;
     actual.rgba[4 * reference.index(30, 30)] ^= 0x80;
     const std::string path = std::string(LAB_BINARY_DIR) + "/test_output/compare_selftest_diff.png";
