@@ -35,7 +35,8 @@ glm::dmat4 look_at_camera_to_world(const glm::dvec3& eye, const glm::dvec3& targ
     // top-down view has world −Z at the top of the image (a map's "north").
     if (glm::length(glm::cross(f, up)) < 1e-6) {
         const double side = glm::dot(f, up) > 0.0 ? 1.0 : -1.0;
-        const glm::dvec3 axis = std::abs(f.z) > 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 0.0, 1.0);
+        const bool f_along_z = glm::length(glm::cross(f, glm::dvec3(0.0, 0.0, 1.0))) < 1e-6;
+        const glm::dvec3 axis = f_along_z ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 0.0, 1.0);
         up = side * axis;
     }
     // Orthonormal basis: r ⟂ f and u ⟂ both; r, u, −f is right-handed.
