@@ -59,6 +59,8 @@ LabApp::~LabApp() {
     window_.reset();
 }
 
+void LabApp::wait_idle() const { VK_CHECK(vkDeviceWaitIdle(vk_->device())); }
+
 bool LabApp::key_down(int glfw_key) const {
     if (!window_ || (ui_ && ui_->wants_keyboard())) return false;
     return glfwGetKey(window_->handle(), glfw_key) == GLFW_PRESS;

@@ -59,6 +59,8 @@ public:
     bool key_pressed(int glfw_key);  // went down since the last frame
     const MouseInput& mouse() const { return mouse_; }
     float average_frame_ms() const { return average_frame_ms_; }
+    // Waits until the GPU is idle (before destroying resources in-flight frames may still use).
+    void wait_idle() const;
 
     // Renders until the window closes or --frames/--benchmark are done; headless writes the PNG.
     void run(const Callbacks& callbacks);

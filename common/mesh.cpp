@@ -1,6 +1,7 @@
-// mesh.cpp — built-in primitives (see docs/meshes.md for dimensions and UV layouts).
+// mesh.cpp — the built-in primitives and the OBJ loader (docs/meshes.md has the
+// dimensions, default tessellations, UV layouts and the loader's rules).
 //
-// Conventions used by every primitive here:
+// Conventions used by every mesh here:
 //   * counter-clockwise winding seen from outside (front face);
 //   * UV origin at the top-left of the image: u grows to the right, v grows
 //     downwards (Vulkan / stb_image row order);
@@ -16,7 +17,6 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -414,8 +414,8 @@ void compute_tangents(Mesh& mesh) {
 // Before it sees the text, one cheap pass over the lines checks what it
 // would silently accept or misread: binary data, truncated `v`/`vt`/`vn`
 // lines, bad or huge numbers, faces with fewer than 3 corners and indices that
-// are 0 or out of range (tinyobjloader's n-gon triangulation would read out of
-// bounds with those). It is a validator, not a second parser: the lines are
+// are 0 or out of range (tinyobjloader's polygon triangulation could read out
+// of bounds with those). It is a validator, not a second parser: the lines are
 // not interpreted beyond that.
 // ---------------------------------------------------------------------------
 namespace {
@@ -463,7 +463,9 @@ bool read_small_file(const std::string& path, std::uintmax_t limit, std::string&
 }
 
 // Bytes that never occur in a text OBJ/MTL file (tab, CR, LF, FF, VT are fine).
-bool is_binary_byte(unsigned char c) { return c == 0x7f || (c < 0x20 && !std::strchr("\t\n\r\f\v", c)); }
+bool is_binary_byte(unsigned char c) {
+    return c == 0 || c == 0x7f || (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' && c != '\v');
+}
 
 // Splits at spaces and tabs (what tinyobjloader treats as separators).
 std::vector<std::string_view> split_ws(std::string_view s) {

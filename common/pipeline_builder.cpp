@@ -38,6 +38,10 @@ PipelineBuilder& PipelineBuilder::topology(VkPrimitiveTopology topology) {
     topology_ = topology;
     return *this;
 }
+PipelineBuilder& PipelineBuilder::specialization(const VkSpecializationInfo* info) {
+    specialization_ = info;
+    return *this;
+}
 
 PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRenderPass render_pass) const {
     VkDevice device = vk.device();
@@ -60,6 +64,8 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
     stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
     stages[1].module = fragment_;
     stages[1].pName = "main";
+    stages[0].pSpecializationInfo = specialization_;
+    stages[1].pSpecializationInfo = specialization_;
 
     // Only the attributes the shader reads are declared (unused ones are a validation warning).
     const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};

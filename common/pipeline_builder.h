@@ -31,6 +31,9 @@ public:
     PipelineBuilder& depth(bool test, bool write);
     PipelineBuilder& alpha_blend(bool enabled);
     PipelineBuilder& topology(VkPrimitiveTopology topology);
+    // Specialization constants for both stages (the same constant_ids in the vertex and
+    // fragment shader). `info` must stay valid until build().
+    PipelineBuilder& specialization(const VkSpecializationInfo* info);
 
     struct Result {
         Handle<VkPipelineLayout> layout;
@@ -49,6 +52,7 @@ private:
     bool depth_write_ = true;
     bool blend_ = false;
     VkPrimitiveTopology topology_ = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    const VkSpecializationInfo* specialization_ = nullptr;
 };
 
 // One descriptor set layout from a list of (binding = index, type, stages).

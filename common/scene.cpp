@@ -392,8 +392,38 @@ MaterialDesc read_material(const Context& ctx, const json& value, const std::str
     s.vec3("specular", m.specular, Vec::Color);
     s.number("shininess", m.shininess, kNonNegative);
     s.vec3("emissive", m.emissive, Vec::Color);
+    s.number("roughness", m.roughness, closed_range(0.0, 1.0));
+    s.vec3("f0", m.f0, Vec::Color);
+    s.number("roughness_x", m.roughness_x, closed_range(0.01, 1.0));
+    s.number("roughness_y", m.roughness_y, closed_range(0.01, 1.0));
+    s.number("minnaert_k", m.minnaert_k, closed_range(0.0, 4.0));
     s.finish();
+    if (m.f0.x > 1.0f || m.f0.y > 1.0f || m.f0.z > 1.0f)
+        fail(ctx, s.path_of("f0"), "each component must be <= 1 (a reflectance)");
     return m;
+}
+
+// Lab 2: "lighting": { "model": ..., "shading": ..., ... } (docs/lighting.md).
+LightingDesc read_lighting(const Context& ctx, const json& value) {
+    using L = LightingDesc;
+    L l;
+    Section s(ctx, value, "lighting");
+    if (const json* v = s.find("model"))
+        l.model = L::Model(s.choice(*v, "model", "lighting model",
+                                    {"lambert", "phong", "blinn_phong", "toon", "oren_nayar", "minnaert",
+                                     "cook_torrance", "ward"}));
+    if (const json* v = s.find("shading"))
+        l.shading = L::Shading(s.choice(*v, "shading", "shading model", {"flat", "gouraud", "phong"}));
+    if (const json* v = s.find("spot_falloff"))
+        l.spot_falloff = L::SpotFalloff(s.choice(*v, "spot_falloff", "spot falloff", {"smooth", "edge"}));
+    if (const json* v = s.find("distribution"))
+        l.distribution = L::Distribution(s.choice(*v, "distribution", "distribution", {"ggx", "beckmann"}));
+    s.integer("toon_bands", l.toon_bands, 1, 16);
+    s.boolean("markers", l.markers);
+    if (const json* v = s.find("nan_check"))
+        l.nan_check = L::NanCheck(s.choice(*v, "nan_check", "nan_check mode", {"off", "on", "self_test"}));
+    s.finish();
+    return l;
 }
 
 // "plane", "cube", ... or a .obj path (relative to the scene file's folder).
@@ -453,6 +483,7 @@ Scene read_scene(const Context& ctx, const json& root) {
     if (const json* v = s.find("camera")) scene.camera = read_camera(ctx, *v);
     s.vec3("background", scene.background, Vec::Color);
     if (const json* v = s.find("ambient")) scene.ambient = read_ambient(ctx, *v);
+    if (const json* v = s.find("lighting")) scene.lighting = read_lighting(ctx, *v);
     if (const json* v = s.find("lights")) {
         for (const json& light : expect_array(ctx, *v, "lights"))
             scene.lights.push_back(read_light(ctx, light, index_path("lights", scene.lights.size())));

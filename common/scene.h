@@ -51,6 +51,29 @@ struct MaterialDesc {
     glm::vec3 specular{0.0f};
     float shininess = 32.0f;
     glm::vec3 emissive{0.0f};
+    // Lab 2 lighting models (docs/lighting.md): Oren-Nayar sigma and Cook-Torrance roughness,
+    // Cook-Torrance reflectance at normal incidence, Ward's two roughnesses, Minnaert's exponent.
+    float roughness = 0.5f;
+    glm::vec3 f0{0.04f};
+    float roughness_x = 0.15f;  // Ward: along the mesh tangent (+u)
+    float roughness_y = 0.45f;  // Ward: along the bitangent (+v)
+    float minnaert_k = 0.8f;
+};
+
+// Lab 2: which shading and lighting model a scene uses (docs/lighting.md).
+struct LightingDesc {
+    enum class Model { Lambert, Phong, BlinnPhong, Toon, OrenNayar, Minnaert, CookTorrance, Ward };
+    enum class Shading { Flat, Gouraud, Phong };
+    enum class SpotFalloff { Smooth, Edge };      // inner/outer ramp, or 1 - (1 - cos b)/(1 - cos a)
+    enum class Distribution { GGX, Beckmann };    // Cook-Torrance microfacet distribution
+    enum class NanCheck { Off, On, SelfTest };    // paint NaN/Inf pixels magenta (tests)
+    Model model = Model::BlinnPhong;
+    Shading shading = Shading::Phong;
+    SpotFalloff spot_falloff = SpotFalloff::Smooth;
+    Distribution distribution = Distribution::GGX;
+    int toon_bands = 4;
+    bool markers = false;  // draw light markers (the UI can toggle them)
+    NanCheck nan_check = NanCheck::Off;
 };
 
 struct ObjectDesc {
@@ -72,6 +95,7 @@ struct Scene {
     CameraDesc camera;
     glm::vec3 background{0.05f, 0.05f, 0.08f};
     AmbientDesc ambient;
+    LightingDesc lighting;
     std::vector<LightDesc> lights;
     std::map<std::string, MaterialDesc> materials;
     std::vector<ObjectDesc> objects;

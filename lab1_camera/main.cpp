@@ -7,14 +7,18 @@
 //
 // Controls: W/S forward/back, A/D strafe, Space/Shift up/down (world Y),
 // left-drag rotates (Look-At: orbits the target), wheel changes the distance
-// to the target (Look-At), C switches the camera mode.
+// to the target (Look-At), C switches the camera mode, R reloads the scene
+// (it also reloads by itself when the file changes; the camera stays put).
 #include "camera.h"
 #include "renderer.h"
 
 #include "lab_app.h"
+#include "scene_reloader.h"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+
+#include <memory>
 
 namespace {
 
@@ -45,9 +49,16 @@ void update_camera(lab::LabApp& app, Camera& camera, const Controls& controls, f
     if (mouse.scroll != 0.0f) camera.zoom(mouse.scroll);
 }
 
-void camera_panel(lab::LabApp& app, Camera& camera, Controls& controls) {
+void camera_panel(lab::LabApp& app, Camera& camera, Controls& controls, const lab::SceneReloader& reloader) {
+    ImGui::SetNextWindowSize(ImVec2(380.0f, 0.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Camera");
     ImGui::Text("%.2f ms/frame (%.0f fps)", app.average_frame_ms(), 1000.0 / std::max(app.average_frame_ms(), 1e-3f));
+    ImGui::TextDisabled("scene: %s (R reloads)", reloader.file().c_str());
+    if (!reloader.error().empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
+        ImGui::TextWrapped("%s", reloader.error().c_str());
+        ImGui::PopStyleColor();
+    }
     int mode = camera.mode == Camera::Mode::LookAt ? 0 : 1;
     if (ImGui::RadioButton("Look-At", &mode, 0)) camera.set_mode(Camera::Mode::LookAt);
     ImGui::SameLine();
@@ -88,16 +99,25 @@ int main(int argc, char** argv) {
     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
         Camera camera = Camera::from_scene(scene.camera);
         Controls controls;
-        Renderer renderer(app.vk(), app.target(), scene, LAB_SHADER_DIR);
+        auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, LAB_SHADER_DIR);
+        lab::SceneReloader reloader(app.options().scene, scene);
+        const auto rebuild = [&](const lab::Scene& fresh) {
+            auto next = std::make_unique<Renderer>(app.vk(), app.target(), fresh, LAB_SHADER_DIR);
+            app.wait_idle();  // in-flight frames may still use the old buffers
+            renderer = std::move(next);
+        };
 
         app.run({
-            [&](float dt) { update_camera(app, camera, controls, dt); },
-            [&] { camera_panel(app, camera, controls); },
+            [&](float dt) {
+                if (app.has_window()) reloader.poll(app.key_pressed(GLFW_KEY_R), rebuild);
+                update_camera(app, camera, controls, dt);
+            },
+            [&] { camera_panel(app, camera, controls, reloader); },
             [&](const lab::Frame& frame) {
                 const double aspect = double(frame.extent.width) / double(frame.extent.height);
-                renderer.draw(frame, glm::mat4(camera.view()), glm::mat4(camera.projection(aspect)));
+                renderer->draw(frame, glm::mat4(camera.view()), glm::mat4(camera.projection(aspect)));
             },
-            [&] { return scene.background; },
+            [&] { return reloader.scene().background; },
         });
     });
 }
