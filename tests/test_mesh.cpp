@@ -704,6 +704,7 @@ TEST(ObjLoader, BrokenFilesAreRejectedWithOneLine) {
         {"bad_number", "v 0 0 0\nv 1 0x 0\nv 0 1 0\nf 1 2 3\n", ":2:", "bad number"},
         {"bad_vertex_ref", tri + "f 1/2/3/4 2 3\n", ":4:", "bad face vertex"},
         {"binary", std::string("v 0 0 0\n\x7f" "ELF\x02\x01\x01\0\0\0", 18), ":2:", "binary"},
+        {"nul_bytes", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n\0\0\0\0f 1 2 3\n", 36), ":4:", "binary"},
         {"utf16", std::string("\xff\xfev\0 \0" "1\0", 8), ":1:", "UTF-16"},
         {"huge_polygon", tri + "f" + [] { std::string f; for (int i = 0; i < 5000; ++i) f += " " + std::to_string(1 + i % 3); return f; }() + "\n", ":4:", "limit 4096"},
         {"points_only", tri + "p 1 2 3\n", "", "no faces"},
