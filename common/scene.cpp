@@ -464,7 +464,10 @@ ObjectDesc read_object(const Context& ctx, const json& value, const std::string&
     s.vec3("position", o.position, Vec::Coordinate);
     s.vec3("rotation_deg", o.rotation_deg, Vec::Coordinate);
     s.vec3("scale", o.scale, Vec::Scale);
-    read_tessellation(s, "segments", o.segments);
+    if (o.mesh == "icosphere")
+        s.integer("segments", o.segments, 0, 7);  // the subdivision level (0 = default 2)
+    else
+        read_tessellation(s, "segments", o.segments);
     read_tessellation(s, "rings", o.rings);
     s.number("crease_deg", o.crease_deg, closed_range(0.0, 180.0));
     s.boolean("normalize", o.normalize);

@@ -437,7 +437,7 @@ TEST(SceneLoader, UnknownKeysAreRejectedWithASuggestion) {
     expect_error(with(R"("camera": {"fov": 60})"), "camera.fov: ", "did you mean 'fov_y_deg'?");
     expect_error(with(R"("backgroud": [0, 0, 0])"), "backgroud: ", "did you mean 'background'?");
     expect_error(with(R"("ambient": {"colour": [1, 1, 1]})"), "ambient.colour: ", "did you mean 'color'?");
-    expect_error(R"({"objects": [], "materials": {"m": {"roughness": 0.5}}})", "materials.m.roughness: ",
+    expect_error(R"({"objects": [], "materials": {"m": {"glossiness": 0.5}}})", "materials.m.glossiness: ",
                  "unknown key");
     // No close match: the message lists the valid keys instead.
     expect_error(with(R"("zzzzzz": 1)"), "zzzzzz: ", "expected one of: camera, background");
@@ -554,6 +554,15 @@ TEST(SceneLoader, MeshOptionRanges) {
     expect_error(object_with(R"("rings": -3)"), "objects[0].rings: ", "must be in [0, 1024]");
     expect_error(object_with(R"("crease_deg": 181)"), "objects[0].crease_deg: ", "must be in [0, 180]");
     expect_error(object_with(R"("crease_deg": -1)"), "objects[0].crease_deg: ", "must be in [0, 180]");
+}
+
+TEST(SceneLoader, IcosphereSegmentsIsTheSubdivisionLevel) {
+    const auto ico = [](const std::string& extra) {
+        return R"({ "materials": {"m": {}}, "objects": [{"mesh": "icosphere", "material": "m", )" + extra + "}]}";
+    };
+    EXPECT_EQ(parse(ico(R"("segments": 1)")).objects[0].segments, 1);
+    EXPECT_EQ(parse(ico(R"("segments": 7)")).objects[0].segments, 7);
+    expect_error(ico(R"("segments": 8)"), "objects[0].segments: ", "must be in [0, 7]");
 }
 
 // --- message format -----------------------------------------------------------
