@@ -867,7 +867,18 @@ Mesh make_mesh(const ObjectDesc& object) {
         std::string ext = std::filesystem::path(object.mesh_path).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         if (ext != ".obj") fail(object.mesh_path, 0, "unsupported model format (only .obj)");
-        return load_obj(object.mesh_path, object.crease_deg, object.normalize).mesh;
+        LoadedModel model = load_obj(object.mesh_path, object.crease_deg, object.normalize);
+        if (object.obj_material == ObjectDesc::kAllTriangles) return std::move(model.mesh);
+        if (object.obj_material < -1 || object.obj_material >= int(model.materials.size()))
+            fail(object.mesh_path, 0, "no material number " + std::to_string(object.obj_material));
+        // Keep only the triangles of one .mtl material (see expand_model_materials in scene.cpp).
+        std::vector<uint32_t> kept;
+        for (size_t t = 0; t < model.triangle_material.size(); ++t)
+            if (model.triangle_material[t] == object.obj_material)
+                kept.insert(kept.end(), model.mesh.indices.begin() + long(3 * t),
+                            model.mesh.indices.begin() + long(3 * t + 3));
+        model.mesh.indices = std::move(kept);
+        return model.mesh;
     }
     // 0 = the primitive's default tessellation (see docs/meshes.md).
     const auto pick = [](int value, int fallback) { return value > 0 ? value : fallback; };

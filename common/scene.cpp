@@ -9,6 +9,8 @@
 // Every problem throws SceneError with one line "FILE: JSON.PATH: reason".
 #include "scene.h"
 
+#include "mesh.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
@@ -455,8 +457,10 @@ ObjectDesc read_object(const Context& ctx, const json& value, const std::string&
     ObjectDesc o;
     Section s(ctx, value, path);
     read_mesh(ctx, s.required("mesh"), s.path_of("mesh"), o);
-    o.material = Section::text_of(ctx, s.required("material"), s.path_of("material"));
-    if (materials.count(o.material) == 0) {
+    // A model may leave "material" out: its own .mtl materials are used (see expand_model_materials).
+    const json* material = o.mesh_path.empty() ? &s.required("material") : s.find("material");
+    if (material) o.material = Section::text_of(ctx, *material, s.path_of("material"));
+    if (material && materials.count(o.material) == 0) {
         std::vector<std::string> names;
         for (const auto& m : materials) names.push_back(m.first);
         fail(ctx, s.path_of("material"), "unknown material '" + o.material + "'" + suggestion(o.material, names));
@@ -478,6 +482,49 @@ ObjectDesc read_object(const Context& ctx, const json& value, const std::string&
 const json& expect_array(const Context& ctx, const json& value, const std::string& path) {
     if (!value.is_array()) fail(ctx, path, std::string("expected an array [ ... ], got ") + value.type_name());
     return value;
+}
+
+// Models without a "material" key use the materials of their .mtl file: the
+// object is split into one object per material (ObjectDesc::obj_material picks
+// its triangles) and each .mtl material becomes a scene material named
+// "MODEL.obj#NAME" (Kd → albedo, Ks → specular, Ns → shininess, Ke → emissive).
+// Triangles with no material — or a model with no .mtl — use "MODEL.obj#default"
+// (the format's default material). Renderers and the CPU reference then see
+// ordinary objects and need no special case.
+void expand_model_materials(const Context& ctx, Scene& scene) {
+    std::vector<ObjectDesc> expanded;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const ObjectDesc& object = scene.objects[i];
+        if (object.mesh_path.empty() || !object.material.empty()) {
+            expanded.push_back(object);
+            continue;
+        }
+        LoadedModel model;
+        try {
+            model = load_obj(object.mesh_path, object.crease_deg, object.normalize);
+        } catch (const std::exception& e) {
+            fail(ctx, index_path("objects", i) + ".mesh", e.what());
+        }
+        std::vector<bool> used(model.materials.size() + 1, false);  // [0] = "no material"
+        for (int m : model.triangle_material) used[size_t(m + 1)] = true;
+        for (int m = -1; m < int(model.materials.size()); ++m) {
+            if (!used[size_t(m + 1)]) continue;
+            ObjectDesc part = object;
+            part.obj_material = m;
+            part.material = object.mesh + "#" + (m < 0 ? "default" : model.materials[size_t(m)].name);
+            MaterialDesc desc;  // "#default": the format's default material
+            if (m >= 0) {
+                const ObjMaterial& mtl = model.materials[size_t(m)];
+                desc.albedo = mtl.albedo;
+                desc.specular = mtl.specular;
+                desc.shininess = mtl.shininess;
+                desc.emissive = mtl.emissive;
+            }
+            scene.materials[part.material] = desc;
+            expanded.push_back(part);
+        }
+    }
+    scene.objects = std::move(expanded);
 }
 
 Scene read_scene(const Context& ctx, const json& root) {
@@ -510,6 +557,7 @@ Scene read_scene(const Context& ctx, const json& root) {
         scene.objects.push_back(
             read_object(ctx, object, index_path("objects", scene.objects.size()), scene.materials));
     s.finish();
+    expand_model_materials(ctx, scene);
     return scene;
 }
 

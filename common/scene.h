@@ -79,7 +79,12 @@ struct LightingDesc {
 struct ObjectDesc {
     std::string mesh;       // "plane" | "cube" | "sphere" | path as written in the file
     std::string mesh_path;  // for file meshes: absolute path (resolved against the scene file)
-    std::string material;   // key into Scene::materials (validated to exist)
+    std::string material;   // key into Scene::materials (validated to exist); for a model
+                            // without "material" the loader fills in its .mtl materials
+    // File meshes split by .mtl material: only the triangles of .mtl material
+    // number obj_material (−1: those without one); kAllTriangles: the whole model.
+    static constexpr int kAllTriangles = -2;
+    int obj_material = kAllTriangles;
     glm::vec3 position{0.0f};
     glm::vec3 rotation_deg{0.0f};  // [rx, ry, rz]
     glm::vec3 scale{1.0f};

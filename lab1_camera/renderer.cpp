@@ -9,7 +9,8 @@ namespace {
 // Objects that share a mesh (and its tessellation) share one GPU copy.
 std::string mesh_key(const lab::ObjectDesc& object) {
     return (object.mesh_path.empty() ? object.mesh : object.mesh_path) + "|" + std::to_string(object.segments) + "|" +
-           std::to_string(object.rings) + "|" + std::to_string(object.crease_deg) + "|" + std::to_string(object.normalize);
+           std::to_string(object.rings) + "|" + std::to_string(object.crease_deg) + "|" + std::to_string(object.normalize) + "|" +
+           std::to_string(object.obj_material);
 }
 }  // namespace
 

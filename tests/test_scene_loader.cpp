@@ -2,6 +2,7 @@
 //
 // Every rejected input must produce one line "FILE: JSON.PATH: reason"; the
 // bad-input tests check the file label, the exact path and a word of the reason.
+#include "mesh.h"
 #include "scene.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -588,6 +589,81 @@ TEST(SceneLoader, EmptyFileLabelStillGivesALabel) {
     }
 }
 
+// --- lab 2: "lighting" section and the lighting-model material keys ---------------
+
+TEST(SceneLoader, LightingDefaultsAreBlinnPhongPerPixel) {
+    const lab::Scene s = parse(kMinimal);
+    EXPECT_EQ(s.lighting.model, lab::LightingDesc::Model::BlinnPhong);
+    EXPECT_EQ(s.lighting.shading, lab::LightingDesc::Shading::Phong);
+    EXPECT_EQ(s.lighting.spot_falloff, lab::LightingDesc::SpotFalloff::Smooth);
+    EXPECT_EQ(s.lighting.distribution, lab::LightingDesc::Distribution::GGX);
+    EXPECT_EQ(s.lighting.toon_bands, 4);
+    EXPECT_FALSE(s.lighting.markers);
+    EXPECT_EQ(s.lighting.nan_check, lab::LightingDesc::NanCheck::Off);
+    const lab::MaterialDesc& m = s.materials.at("m");
+    EXPECT_FLOAT_EQ(m.roughness, 0.5f);
+    expect_vec3(m.f0, 0.04f, 0.04f, 0.04f);
+    EXPECT_FLOAT_EQ(m.roughness_x, 0.15f);
+    EXPECT_FLOAT_EQ(m.roughness_y, 0.45f);
+    EXPECT_FLOAT_EQ(m.minnaert_k, 0.8f);
+}
+
+TEST(SceneLoader, LightingSectionParsesEveryKey) {
+    const lab::Scene s = parse(with(R"("lighting": {"model": "cook_torrance", "shading": "gouraud",
+        "spot_falloff": "edge", "distribution": "beckmann", "toon_bands": 6, "markers": true, "nan_check": "on"})"));
+    EXPECT_EQ(s.lighting.model, lab::LightingDesc::Model::CookTorrance);
+    EXPECT_EQ(s.lighting.shading, lab::LightingDesc::Shading::Gouraud);
+    EXPECT_EQ(s.lighting.spot_falloff, lab::LightingDesc::SpotFalloff::Edge);
+    EXPECT_EQ(s.lighting.distribution, lab::LightingDesc::Distribution::Beckmann);
+    EXPECT_EQ(s.lighting.toon_bands, 6);
+    EXPECT_TRUE(s.lighting.markers);
+    EXPECT_EQ(s.lighting.nan_check, lab::LightingDesc::NanCheck::On);
+    const char* models[] = {"lambert", "phong", "blinn_phong", "toon", "oren_nayar", "minnaert", "cook_torrance", "ward"};
+    for (int i = 0; i < 8; ++i)
+        EXPECT_EQ(int(parse(with(std::string(R"("lighting": {"model": ")") + models[i] + "\"}")).lighting.model), i);
+    const char* shadings[] = {"flat", "gouraud", "phong"};
+    for (int i = 0; i < 3; ++i)
+        EXPECT_EQ(int(parse(with(std::string(R"("lighting": {"shading": ")") + shadings[i] + "\"}")).lighting.shading), i);
+}
+
+TEST(SceneLoader, LightingMaterialKeysParse) {
+    const lab::Scene s = parse(R"({"objects": [], "materials": {"m": {"roughness": 0.25, "f0": [1, 0.71, 0.29],
+        "roughness_x": 0.1, "roughness_y": 0.6, "minnaert_k": 1.5}}})");
+    const lab::MaterialDesc& m = s.materials.at("m");
+    EXPECT_FLOAT_EQ(m.roughness, 0.25f);
+    expect_vec3(m.f0, 1.0f, 0.71f, 0.29f);
+    EXPECT_FLOAT_EQ(m.roughness_x, 0.1f);
+    EXPECT_FLOAT_EQ(m.roughness_y, 0.6f);
+    EXPECT_FLOAT_EQ(m.minnaert_k, 1.5f);
+}
+
+TEST(SceneLoader, BadLightingValuesAreRejected) {
+    expect_error(with(R"("lighting": {"model": "blinn"})"), "lighting.model: ",
+                 "unknown lighting model 'blinn'; did you mean 'blinn_phong'?");
+    expect_error(with(R"("lighting": {"shading": "smooth"})"), "lighting.shading: ", "unknown shading model 'smooth'");
+    expect_error(with(R"("lighting": {"spot_falloff": "linear"})"), "lighting.spot_falloff: ", "unknown spot falloff");
+    expect_error(with(R"("lighting": {"distribution": "ggx2"})"), "lighting.distribution: ", "did you mean 'ggx'?");
+    expect_error(with(R"("lighting": {"toon_bands": 0})"), "lighting.toon_bands: ", "must be in [1, 16], got 0");
+    expect_error(with(R"("lighting": {"toon_bands": 2.5})"), "lighting.toon_bands: ", "expected an integer");
+    expect_error(with(R"("lighting": {"markers": 1})"), "lighting.markers: ", "expected true or false");
+    expect_error(with(R"("lighting": {"nan_check": true})"), "lighting.nan_check: ", "expected a string");
+    expect_error(with(R"("lighting": {"modle": "phong"})"), "lighting.modle: ", "did you mean 'model'?");
+    expect_error(with(R"("lighting": "phong")"), "lighting: ", "expected an object");
+}
+
+TEST(SceneLoader, BadLightingMaterialValuesAreRejected) {
+    auto material = [](const std::string& body) {
+        return R"({"objects": [], "materials": {"m": {)" + body + "}}}";
+    };
+    expect_error(material(R"("roughness": 1.5)"), "materials.m.roughness: ", "must be in [0, 1], got 1.5");
+    expect_error(material(R"("roughness": -0.1)"), "materials.m.roughness: ", "must be in [0, 1]");
+    expect_error(material(R"("f0": [0.5, -0.1, 0])"), "materials.m.f0[1]: ", "must be >= 0");
+    expect_error(material(R"("f0": [0.5, 1.5, 0])"), "materials.m.f0: ", "must be <= 1");
+    expect_error(material(R"("roughness_x": 0)"), "materials.m.roughness_x: ", "must be in [0.01, 1], got 0");
+    expect_error(material(R"("roughness_y": 2)"), "materials.m.roughness_y: ", "must be in [0.01, 1]");
+    expect_error(material(R"("minnaert_k": 5)"), "materials.m.minnaert_k: ", "must be in [0, 4], got 5");
+}
+
 // --- model_matrix -------------------------------------------------------------
 
 namespace {
@@ -652,4 +728,58 @@ TEST(ModelMatrix, MatchesAHandComputedMatrix) {
         for (int r = 0; r < 4; ++r) EXPECT_NEAR(m[c][r], expected[c][r], 1e-6f) << "column " << c << " row " << r;
     // Scale first, then rotate, then translate: (1,0,0) -> (2,0,0) -> (0,0,-2) -> (1,2,1).
     expect_near(transform_point(m, {1, 0, 0}), 1, 2, 1);
+}
+
+// --- models without a "material": their .mtl materials ---------------------------
+
+TEST(SceneLoader, ModelWithoutMaterialUsesItsMtl) {
+    TempDir dir;
+    dir.write("two.mtl", "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 10\nnewmtl glow\nKd 0 0 1\nKe 0 1 0\n");
+    // Two triangles of "red", one of "glow", one with no material.
+    dir.write("two.obj",
+              "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+              "f 1 2 3\nusemtl red\nf 1 2 3\nf 1 3 4\nusemtl glow\nf 1 3 4\n");
+    dir.write("scene.json", R"({"materials": {}, "objects": [{"mesh": "two.obj", "position": [1, 2, 3]}]})");
+    const lab::Scene s = lab::load_scene((dir.path() / "scene.json").string());
+    ASSERT_EQ(s.objects.size(), 3u);  // one object per material used, in .mtl order, "no material" first
+    EXPECT_EQ(s.objects[0].material, "two.obj#default");
+    EXPECT_EQ(s.objects[0].obj_material, -1);
+    EXPECT_EQ(s.objects[1].material, "two.obj#red");
+    EXPECT_EQ(s.objects[1].obj_material, 0);
+    EXPECT_EQ(s.objects[2].material, "two.obj#glow");
+    EXPECT_EQ(s.objects[2].position, glm::vec3(1, 2, 3));
+    const lab::MaterialDesc& red = s.materials.at("two.obj#red");
+    EXPECT_EQ(red.albedo, glm::vec3(1, 0, 0));
+    EXPECT_EQ(red.specular, glm::vec3(0.5f));
+    EXPECT_EQ(red.shininess, 10.0f);
+    EXPECT_EQ(s.materials.at("two.obj#glow").emissive, glm::vec3(0, 1, 0));
+    EXPECT_EQ(s.materials.at("two.obj#default").albedo, lab::MaterialDesc{}.albedo);
+    // Each part's mesh holds exactly its own triangles.
+    EXPECT_EQ(lab::make_mesh(s.objects[0]).indices.size(), 3u);
+    EXPECT_EQ(lab::make_mesh(s.objects[1]).indices.size(), 6u);
+    EXPECT_EQ(lab::make_mesh(s.objects[2]).indices.size(), 3u);
+}
+
+TEST(SceneLoader, ModelWithAMaterialKeyIsOneObject) {
+    TempDir dir;
+    dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+    dir.write("scene.json", R"({"materials": {"m": {}}, "objects": [{"mesh": "m.obj", "material": "m"}]})");
+    const lab::Scene s = lab::load_scene((dir.path() / "scene.json").string());
+    ASSERT_EQ(s.objects.size(), 1u);
+    EXPECT_EQ(s.objects[0].obj_material, lab::ObjectDesc::kAllTriangles);
+    EXPECT_EQ(lab::make_mesh(s.objects[0]).indices.size(), 3u);
+}
+
+TEST(SceneLoader, BrokenModelWithoutMaterialIsASceneError) {
+    TempDir dir;
+    dir.write("bad.obj", "v 0 0 0\nf 1 2 3\n");
+    dir.write("scene.json", R"({"materials": {}, "objects": [{"mesh": "bad.obj"}]})");
+    try {
+        lab::load_scene((dir.path() / "scene.json").string());
+        FAIL() << "expected a SceneError";
+    } catch (const lab::SceneError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("objects[0].mesh: "), std::string::npos) << message;
+        EXPECT_NE(message.find("out of range"), std::string::npos) << message;
+    }
 }
