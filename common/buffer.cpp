@@ -4,6 +4,20 @@
 
 namespace lab {
 
+namespace {
+// Memory for a buffer or an image, of the first type with the wanted properties.
+Handle<VkDeviceMemory> allocate_memory(const VulkanContext& vk, const VkMemoryRequirements& req,
+                                       VkMemoryPropertyFlags properties) {
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = vk.find_memory_type(req.memoryTypeBits, properties);
+    VkDeviceMemory memory;
+    VK_CHECK(vkAllocateMemory(vk.device(), &alloc, nullptr, &memory));
+    VkDevice device = vk.device();
+    return Handle<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+}
+}  // namespace
+
 Buffer::Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
     : size_(size) {
     VkDevice device = vk.device();
@@ -17,14 +31,9 @@ Buffer::Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags us
 
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = vk.find_memory_type(req.memoryTypeBits, memory);
-    VkDeviceMemory mem;
-    VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &mem));
-    memory_ = Handle<VkDeviceMemory>(mem, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-    VK_CHECK(vkBindBufferMemory(device, buffer, mem, 0));
-    if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) VK_CHECK(vkMapMemory(device, mem, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    memory_ = allocate_memory(vk, req, memory);
+    VK_CHECK(vkBindBufferMemory(device, buffer, memory_, 0));
+    if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) VK_CHECK(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
 Buffer Buffer::host_visible(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage) {
@@ -62,13 +71,8 @@ Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat forma
 
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device, image, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = vk.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory mem;
-    VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &mem));
-    result.memory = Handle<VkDeviceMemory>(mem, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-    VK_CHECK(vkBindImageMemory(device, image, mem, 0));
+    result.memory = allocate_memory(vk, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VK_CHECK(vkBindImageMemory(device, image, result.memory, 0));
 
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = image;

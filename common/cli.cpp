@@ -4,6 +4,8 @@
 // one line that names the option, so a typo never silently runs with defaults.
 #include "cli.h"
 
+#include "text_match.h"
+
 #include <algorithm>
 #include <cctype>
 #include <climits>
@@ -14,26 +16,7 @@ namespace {
 
 constexpr long long kMaxImageSide = 16384;  // the largest image side Vulkan guarantees (maxImageDimension2D)
 
-std::string lower(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
-// Edit distance: how many single-letter edits (insert, delete, replace,
-// swap two neighbours) turn a into b. "postion" -> "position" is 1, "mseh" -> "mesh" is 1.
-size_t edit_distance(const std::string& a, const std::string& b) {
-    // d[i][j] = distance between the first i letters of a and the first j letters of b.
-    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-    for (size_t i = 1; i <= a.size(); ++i)
-        for (size_t j = 1; j <= b.size(); ++j) {
-            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
-            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-        }
-    return d[a.size()][b.size()];
-}
+std::string lower(const std::string& s) { return to_lower(s); }
 
 struct OptionSpec {
     const char* name;  // without the leading "--"
@@ -51,15 +34,9 @@ const std::vector<OptionSpec>& option_specs() {
 
 // "--heigth" -> " (did you mean --height?)"
 std::string did_you_mean(const std::string& name) {
-    std::string best;
-    size_t best_distance = 3;  // suggest only when at most 2 letters are off
-    for (const auto& spec : option_specs()) {
-        const size_t d = edit_distance(lower(name), spec.name);
-        if (d < best_distance) {
-            best_distance = d;
-            best = spec.name;
-        }
-    }
+    std::vector<std::string> names;
+    for (const auto& spec : option_specs()) names.push_back(spec.name);
+    const std::string best = closest_match(name, names, 2);  // at most 2 letters off
     return best.empty() ? " (see --help)" : " (did you mean --" + best + "?)";
 }
 

@@ -14,20 +14,8 @@ HeadlessTarget::HeadlessTarget(const VulkanContext& vk, VkExtent2D extent)
                              VK_IMAGE_ASPECT_COLOR_BIT)),
       depth_(create_image_2d(vk, extent, vk.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                              VK_IMAGE_ASPECT_DEPTH_BIT)),
-      slots_(vk) {
-    VkImageView views[2] = {color_.view, depth_.view};
-    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    info.renderPass = render_pass_;
-    info.attachmentCount = 2;
-    info.pAttachments = views;
-    info.width = extent.width;
-    info.height = extent.height;
-    info.layers = 1;
-    VkFramebuffer framebuffer;
-    VK_CHECK(vkCreateFramebuffer(vk.device(), &info, nullptr, &framebuffer));
-    VkDevice device = vk.device();
-    framebuffer_ = Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
-}
+      framebuffer_(make_framebuffer(vk, render_pass_, color_.view, depth_.view, extent)),
+      slots_(vk) {}
 
 HeadlessTarget::~HeadlessTarget() { vkDeviceWaitIdle(vk_.device()); }
 

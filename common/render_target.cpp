@@ -63,6 +63,22 @@ Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_fo
     return Handle<VkRenderPass>(pass, [device](VkRenderPass p) { vkDestroyRenderPass(device, p, nullptr); });
 }
 
+Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pass, VkImageView color,
+                                       VkImageView depth, VkExtent2D extent) {
+    VkImageView views[2] = {color, depth};
+    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    info.renderPass = pass;
+    info.attachmentCount = 2;
+    info.pAttachments = views;
+    info.width = extent.width;
+    info.height = extent.height;
+    info.layers = 1;
+    VkFramebuffer framebuffer;
+    VK_CHECK(vkCreateFramebuffer(vk.device(), &info, nullptr, &framebuffer));
+    VkDevice device = vk.device();
+    return Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+}
+
 FrameSlots::FrameSlots(const VulkanContext& vk) : vk_(vk) {
     VkDevice device = vk.device();
     VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};

@@ -37,6 +37,10 @@ public:
 // The pieces both targets share: one render pass layout and per-slot command buffers + fences.
 Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_format, VkImageLayout color_final_layout);
 
+// A framebuffer for `pass` over a colour and a depth view.
+Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pass, VkImageView color,
+                                       VkImageView depth, VkExtent2D extent);
+
 class FrameSlots {
 public:
     explicit FrameSlots(const VulkanContext& vk);

@@ -10,6 +10,7 @@
 #include "scene.h"
 
 #include "mesh.h"
+#include "text_match.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -46,10 +47,7 @@ constexpr int kMaxTessellation = 1024;
 
 // --- small string helpers ---------------------------------------------------
 
-std::string lower(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
+std::string lower(const std::string& s) { return to_lower(s); }
 
 bool ends_with_ci(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() &&
@@ -66,23 +64,6 @@ std::string number_text(double v) {
     std::ostringstream s;
     s << v;  // 6 significant digits, e.g. "0.5", "1e+07"
     return s.str();
-}
-
-// Edit distance, ignoring case: how many single-letter edits (insert, delete, replace,
-// swap two neighbours) turn a into b. "postion" -> "position" is 1, "mseh" -> "mesh" is 1.
-size_t edit_distance(const std::string& a_in, const std::string& b_in) {
-    const std::string a = lower(a_in), b = lower(b_in);
-    // d[i][j] = distance between the first i letters of a and the first j letters of b.
-    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-    for (size_t i = 1; i <= a.size(); ++i)
-        for (size_t j = 1; j <= b.size(); ++j) {
-            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
-            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-        }
-    return d[a.size()][b.size()];
 }
 
 // The candidate that `word` is probably a typo of, or "" if none is close:

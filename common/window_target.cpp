@@ -129,17 +129,7 @@ void WindowTarget::create_swapchain() {
         VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &view));
         views_.emplace_back(view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
 
-        VkImageView attachments[2] = {view, depth_.view};
-        VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-        fb_info.renderPass = render_pass_;
-        fb_info.attachmentCount = 2;
-        fb_info.pAttachments = attachments;
-        fb_info.width = extent_.width;
-        fb_info.height = extent_.height;
-        fb_info.layers = 1;
-        VkFramebuffer framebuffer;
-        VK_CHECK(vkCreateFramebuffer(device, &fb_info, nullptr, &framebuffer));
-        framebuffers_.emplace_back(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+        framebuffers_.push_back(make_framebuffer(vk_, render_pass_, view, depth_.view, extent_));
         render_finished_.push_back(make_semaphore(device));
     }
 }

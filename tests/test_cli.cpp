@@ -2,6 +2,7 @@
 // (common/image_io.cpp).
 #include "cli.h"
 #include "image_io.h"
+#include "temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -163,24 +164,6 @@ TEST(Cli, UsageListsEveryOptionAndDefault) {
 
 namespace {
 
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path_ = fs::temp_directory_path() / ("lab_png_test_" + std::to_string(::getpid()) + "_" +
-                                             std::to_string(stamp) + "_" + std::to_string(counter++));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-
-private:
-    fs::path path_;
-};
 
 // 3×2 pixels, all different, including transparent and half-transparent alpha.
 lab::Image8 test_image() {

@@ -10,6 +10,7 @@
 // std::runtime_error, never a crash), and a sweep over assimp's test models.
 #include "mesh.h"
 #include "scene.h"
+#include "temp_dir.h"
 
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
@@ -44,30 +45,6 @@ constexpr double kPi = 3.14159265358979323846;
 // Helpers
 // ---------------------------------------------------------------------------
 
-// A fresh folder under the system temp dir, removed again at the end of the test.
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path_ = fs::temp_directory_path() / ("lab_mesh_test_" + std::to_string(::getpid()) + "_" +
-                                             std::to_string(stamp) + "_" + std::to_string(counter++));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    std::string write(const std::string& name, const std::string& text) const {
-        const fs::path file = path_ / name;
-        std::ofstream(file, std::ios::binary) << text;
-        return file.string();
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
 
 size_t triangle_count(const Mesh& m) { return m.indices.size() / 3; }
 

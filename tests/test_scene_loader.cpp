@@ -4,6 +4,7 @@
 // bad-input tests check the file label, the exact path and a word of the reason.
 #include "mesh.h"
 #include "scene.h"
+#include "temp_dir.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -21,31 +22,6 @@ using lab::SceneError;
 
 namespace {
 
-// A fresh folder under the system temp dir, removed again at the end of the test.
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path_ = fs::temp_directory_path() / ("lab_scene_test_" + std::to_string(::getpid()) + "_" +
-                                             std::to_string(stamp) + "_" + std::to_string(counter++));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-    fs::path write(const std::string& name, const std::string& text) const {
-        const fs::path file = path_ / name;
-        fs::create_directories(file.parent_path());
-        std::ofstream(file) << text;
-        return file;
-    }
-
-private:
-    fs::path path_;
-};
 
 // The smallest valid scene: one object, one material.
 const std::string kMinimal = R"({"materials": {"m": {}}, "objects": [{"mesh": "cube", "material": "m"}]})";
