@@ -188,6 +188,8 @@ struct Primitive {
     double volume_tol;     // relative, for the default tessellation
     size_t triangles;      // expected count at the default tessellation
 };
+// How gtest prints a case (else it dumps the struct's bytes into every test name listing).
+void PrintTo(const Primitive& p, std::ostream* os) { *os << p.name; }
 
 const std::vector<Primitive>& primitives() {
     const double R = 0.35, r = 0.15;
