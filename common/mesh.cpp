@@ -885,12 +885,12 @@ Mesh make_mesh(const ObjectDesc& object) {
     const std::string& name = object.mesh;
     if (name == "plane") return make_plane();
     if (name == "cube") return make_cube();
-    if (name == "sphere") return make_sphere(pick(object.segments, 48), pick(object.rings, 24));
+    if (name == "sphere") return make_sphere(pick(object.segments, 32), pick(object.rings, 16));
     if (name == "icosahedron") return make_icosahedron();
     if (name == "icosphere") return make_icosphere(pick(object.segments, 2));
-    if (name == "cylinder") return make_cylinder(pick(object.segments, 48), pick(object.rings, 1));
-    if (name == "cone") return make_cone(pick(object.segments, 48), pick(object.rings, 1));
-    if (name == "torus") return make_torus(pick(object.segments, 48), pick(object.rings, 24));
+    if (name == "cylinder") return make_cylinder(pick(object.segments, 32), pick(object.rings, 1));
+    if (name == "cone") return make_cone(pick(object.segments, 32), pick(object.rings, 1));
+    if (name == "torus") return make_torus(pick(object.segments, 48), pick(object.rings, 16));
     throw std::runtime_error(name + ": unknown mesh (expected plane, cube, sphere, icosahedron, icosphere, "
                                     "cylinder, cone, torus or an .obj file)");
 }

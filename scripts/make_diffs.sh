@@ -35,7 +35,7 @@ if [ "${1:-}" = "--check" ]; then
   fi
   echo "docs/diffs up to date ($(ls "$tmp" | wc -l) diffs)"
 else
-  rm -rf docs/diffs
+  rm -f docs/diffs/*.diff
   generate docs/diffs
   for f in docs/diffs/*.diff; do
     [ -e "$f" ] || continue

@@ -185,7 +185,8 @@ struct Primitive {
     std::function<Mesh()> make;
     bool closed;
     double volume;         // analytic volume of the ideal shape (closed ones)
-    double volume_tol;     // relative, for the default tessellation
+    double volume_tol;     // relative, for the default tessellation (an inscribed polygon's deficit:
+                           // sphere 32×16 −1.6 %, cylinder/cone 32 −0.64 %, torus 48×16 −2.8 %)
     size_t triangles;      // expected count at the default tessellation
 };
 // How gtest prints a case (else it dumps the struct's bytes into every test name listing).
@@ -198,13 +199,13 @@ const std::vector<Primitive>& primitives() {
     static const std::vector<Primitive> list = {
         {"plane", [] { return lab::make_plane(); }, false, 0.0, 0.0, 2},
         {"cube", [] { return lab::make_cube(); }, true, 1.0, 1e-6, 12},
-        {"sphere", [] { return lab::make_sphere(); }, true, 4.0 / 3.0 * kPi * 0.125, 0.01, 2 * 48 * 23},
+        {"sphere", [] { return lab::make_sphere(); }, true, 4.0 / 3.0 * kPi * 0.125, 0.02, 2 * 32 * 15},
         {"icosahedron", [] { return lab::make_icosahedron(); }, true, 5.0 / 12.0 * (3.0 + std::sqrt(5.0)) * a * a * a,
          1e-5, 20},
         {"icosphere", [] { return lab::make_icosphere(); }, true, 4.0 / 3.0 * kPi * 0.125, 0.04, 320},
-        {"cylinder", [] { return lab::make_cylinder(); }, true, kPi * 0.25, 0.005, 2 * 48 + 2 * 48},
-        {"cone", [] { return lab::make_cone(); }, true, kPi * 0.25 / 3.0, 0.005, 2 * 48},
-        {"torus", [] { return lab::make_torus(); }, true, 2.0 * kPi * kPi * R * r * r, 0.02, 2 * 48 * 24},
+        {"cylinder", [] { return lab::make_cylinder(); }, true, kPi * 0.25, 0.01, 2 * 32 + 2 * 32},
+        {"cone", [] { return lab::make_cone(); }, true, kPi * 0.25 / 3.0, 0.01, 2 * 32},
+        {"torus", [] { return lab::make_torus(); }, true, 2.0 * kPi * kPi * R * r * r, 0.035, 2 * 48 * 16},
     };
     return list;
 }

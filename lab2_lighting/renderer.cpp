@@ -1,0 +1,172 @@
+#include "renderer.h"
+
+#include "mesh.h"
+#include "shader.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace {
+// Objects that share a mesh (and its tessellation) share one GPU copy.
+std::string mesh_key(const lab::ObjectDesc& object) {
+    return (object.mesh_path.empty() ? object.mesh : object.mesh_path) + "|" + std::to_string(object.segments) + "|" +
+           std::to_string(object.rings) + "|" + std::to_string(object.crease_deg) + "|" + std::to_string(object.normalize) + "|" +
+           std::to_string(object.obj_material);
+}
+
+// Normals transform with the inverse transpose of the model matrix's 3×3 part, so a
+// non-uniform scale keeps them perpendicular to the surface. Computed in double; scaled so
+// its largest element is ±1 (only the direction matters: the shader renormalizes), which
+// keeps float magnitudes near 1 even for scales of 1e-6 or 1e6.
+void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
+    glm::dmat3 n = glm::transpose(glm::inverse(glm::dmat3(glm::dmat4(model))));
+    double largest = 0.0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) largest = std::max(largest, std::abs(n[c][r]));
+    if (largest > 0.0) n /= largest;
+    for (int c = 0; c < 3; ++c) columns[c] = glm::vec4(glm::vec3(n[c]), 0.0f);
+}
+
+lab::Buffer upload(const lab::VulkanContext& vk, const lab::Mesh& mesh, VkBufferUsageFlags usage, bool indices) {
+    return indices ? lab::Buffer::device_local(vk, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), usage)
+                   : lab::Buffer::device_local(vk, mesh.vertices.data(), mesh.vertices.size() * sizeof(lab::Vertex), usage);
+}
+}  // namespace
+
+Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
+                   const std::string& shader_dir)
+    : vk_(vk), render_pass_(target.render_pass()) {
+    // Geometry: upload each distinct mesh once, remember what to draw.
+    const Lighting lighting = Lighting::from_scene(scene);
+    for (const lab::ObjectDesc& object : scene.objects) {
+        const std::string key = mesh_key(object);
+        auto it = meshes_.find(key);
+        if (it == meshes_.end()) {
+            const lab::Mesh mesh = lab::make_mesh(object);
+            GpuMesh gpu{
+                lab::Buffer::device_local(vk, mesh.vertices.data(), mesh.vertices.size() * sizeof(lab::Vertex),
+                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT),
+                lab::Buffer::device_local(vk, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
+                                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT),
+                static_cast<uint32_t>(mesh.indices.size())};
+            it = meshes_.emplace(key, std::move(gpu)).first;
+        }
+        DrawItem item{&it->second, {lab::model_matrix(object), {}, uint32_t(lighting.material_index(object.material))}};
+        normal_matrix(item.constants.model, item.constants.normal_matrix);
+        items_.push_back(item);
+    }
+    // Light markers: a cube per point light, a cone per spot and directional light.
+    for (const auto& [key, mesh] : {std::pair<std::string, lab::Mesh>{"marker|cube", lab::make_cube()},
+                                    std::pair<std::string, lab::Mesh>{"marker|cone", lab::make_cone(16)}})
+        meshes_.emplace(key, GpuMesh{upload(vk, mesh, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, false),
+                                     upload(vk, mesh, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, true),
+                                     static_cast<uint32_t>(mesh.indices.size())});
+
+    // Per frame in flight: the frame uniforms, the light storage buffer, the material uniform buffer
+    // and a descriptor set, so the CPU can write frame N+1's camera and lights while the GPU still
+    // reads frame N's.
+    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const std::vector<lab::DescriptorBinding> bindings = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, both},   // lights (Gouraud reads them in the vertex shader)
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both}};  // materials
+    set_layout_ = lab::make_descriptor_set_layout(vk, bindings);
+    pool_ = lab::make_descriptor_pool(vk, bindings, lab::RenderTarget::kFramesInFlight);
+    const VkDeviceSize material_bytes = kMaxMaterials * sizeof(GpuMaterial);
+    for (uint32_t slot = 0; slot < lab::RenderTarget::kFramesInFlight; ++slot) {
+        uniforms_.push_back(lab::Buffer::host_visible(vk, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
+        lights_.push_back(lab::Buffer::host_visible(vk, sizeof(GpuLights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+        materials_.push_back(lab::Buffer::host_visible(vk, material_bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
+        sets_.push_back(lab::allocate_descriptor_set(vk, pool_, set_layout_));
+        lab::write_buffer_descriptor(vk, sets_.back(), 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.back().get(),
+                                     sizeof(FrameUniforms));
+        lab::write_buffer_descriptor(vk, sets_.back(), 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.back().get(),
+                                     sizeof(GpuLights));
+        lab::write_buffer_descriptor(vk, sets_.back(), 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, materials_.back().get(),
+                                     material_bytes);
+    }
+
+    vertex_shader_ = lab::load_shader(vk, shader_dir, "lit.vert");
+    fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
+    pipeline_for(variant_of(lighting));  // the scene's own variant, built up front
+    marker_vertex_shader_ = lab::load_shader(vk, shader_dir, "unlit.vert");
+    marker_fragment_shader_ = lab::load_shader(vk, shader_dir, "unlit.frag");
+    marker_pipeline_ = lab::PipelineBuilder()
+                           .shaders(marker_vertex_shader_, marker_fragment_shader_)
+                           .vertex_attributes(lab::kPosition)
+                           .descriptor_set(set_layout_)
+                           .push_constants(both, sizeof(ObjectConstants))  // = the lit layout: set 0 stays bound
+                           .build(vk, target.render_pass());
+}
+
+const lab::PipelineBuilder::Result& Renderer::pipeline_for(const Variant& variant) {
+    auto it = pipelines_.find(variant);
+    if (it != pipelines_.end()) return it->second;
+    // Constant i of the shaders (constant_id = i) is variant[i]; booleans are 32-bit too.
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < variant.size(); ++i)
+        entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(variant), variant.data()};
+    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    return pipelines_[variant] = lab::PipelineBuilder()
+                                     .shaders(vertex_shader_, fragment_shader_)
+                                     .vertex_attributes(lab::kPosition | lab::kNormal | lab::kTangent)
+                                     .descriptor_set(set_layout_)
+                                     .push_constants(both, sizeof(ObjectConstants))
+                                     .specialization(&specialization)
+                                     .build(vk_, render_pass_);
+}
+
+void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,
+                    const glm::vec3& camera_position, const Lighting& lighting) {
+    const FrameUniforms uniforms{view, projection, glm::vec4(camera_position, 1.0f), lighting.ambient_radiance()};
+    std::memcpy(uniforms_[frame.slot].mapped(), &uniforms, sizeof uniforms);
+    const GpuLights lights = lighting.pack_lights();
+    std::memcpy(lights_[frame.slot].mapped(), &lights, sizeof lights);
+    const std::vector<GpuMaterial> materials = lighting.pack_materials();
+    std::memcpy(materials_[frame.slot].mapped(), materials.data(), materials.size() * sizeof(GpuMaterial));
+    const lab::PipelineBuilder::Result& pipeline = pipeline_for(variant_of(lighting));
+
+    VkCommandBuffer cmd = frame.cmd;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 0, 1, &sets_[frame.slot], 0, nullptr);
+    const GpuMesh* bound = nullptr;
+    for (const DrawItem& item : items_) {
+        if (item.mesh != bound) {  // objects sharing a mesh skip the rebind
+            const VkDeviceSize offset = 0;
+            VkBuffer vertex_buffer = item.mesh->vertices.get();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+            vkCmdBindIndexBuffer(cmd, item.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+            bound = item.mesh;
+        }
+        vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(ObjectConstants), &item.constants);
+        vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
+    }
+    if (lighting.options.markers) draw_markers(cmd, lighting);
+}
+
+void Renderer::draw_markers(VkCommandBuffer cmd, const Lighting& lighting) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.pipeline);
+    for (const lab::LightDesc& light : lighting.lights) {
+        const bool point = light.type == lab::LightDesc::Type::Point;
+        const GpuMesh& mesh = meshes_.at(point ? "marker|cube" : "marker|cone");
+        // The cone's apex (+Y) points the way the light travels; a directional light's
+        // arrow floats 3 units up-light of the origin.
+        const glm::vec3 d = glm::length(light.direction) > 0.0f ? glm::normalize(light.direction) : glm::vec3(0, -1, 0);
+        const glm::vec3 side = glm::normalize(glm::cross(std::abs(d.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0), d));
+        const glm::vec3 position = light.type == lab::LightDesc::Type::Directional ? -3.0f * d : light.position;
+        glm::mat4 model(glm::vec4(side, 0.0f), glm::vec4(d, 0.0f), glm::vec4(glm::cross(side, d), 0.0f),
+                        glm::vec4(position, 1.0f));
+        model = model * glm::mat4(glm::mat3(point ? 0.12f : 0.2f));
+        const float brightest = std::max({light.color.r, light.color.g, light.color.b, 1e-6f});
+        const MarkerConstants constants{model, glm::vec4(light.color / brightest, 1.0f)};
+        VkBuffer vertex_buffer = mesh.vertices.get();
+        const VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+        vkCmdBindIndexBuffer(cmd, mesh.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdPushConstants(cmd, marker_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(MarkerConstants), &constants);
+        vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);
+    }
+}

@@ -1,0 +1,75 @@
+// renderer.h — draws the scene's objects, lit: ambient, directional, point and spot lights
+// with the lighting and shading model the scene (or the UI) picks; optional light markers.
+#pragma once
+
+#include "buffer.h"
+#include "lights.h"
+#include "pipeline_builder.h"
+#include "render_target.h"
+#include "scene.h"
+
+#include <glm/glm.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+class Renderer {
+public:
+    Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
+             const std::string& shader_dir);
+
+    // Records the draw commands for one frame (inside the target's render pass).
+    void draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,
+              const glm::vec3& camera_position, const Lighting& lighting);
+
+private:
+    // Per-frame data, one uniform buffer per frame in flight (std140 layout).
+    struct FrameUniforms {
+        glm::mat4 view;
+        glm::mat4 projection;
+        glm::vec4 camera_position;  // xyz: the eye, for the view direction V
+        glm::vec4 ambient;          // rgb: ambient color × intensity
+    };
+    // Per-object data, pushed with each draw (116 of the 128 bytes every GPU allows).
+    struct ObjectConstants {
+        glm::mat4 model;
+        glm::vec4 normal_matrix[3];  // columns of the inverse transpose of the model's 3×3
+        uint32_t material;           // index into the material buffer
+    };
+    struct GpuMesh {
+        lab::Buffer vertices;
+        lab::Buffer indices;
+        uint32_t index_count = 0;
+    };
+    struct DrawItem {
+        const GpuMesh* mesh;
+        ObjectConstants constants;
+    };
+    // The markers use lab 1's unlit shaders: a model matrix and a flat color.
+    struct MarkerConstants {
+        glm::mat4 model;
+        glm::vec4 color;
+    };
+
+    // The pipeline for the current specialization constants (built on first use, then cached).
+    const lab::PipelineBuilder::Result& pipeline_for(const Variant& variant);
+    void draw_markers(VkCommandBuffer cmd, const Lighting& lighting);
+
+    const lab::VulkanContext& vk_;
+    VkRenderPass render_pass_;
+    std::map<std::string, GpuMesh> meshes_;  // one upload per distinct mesh
+    std::vector<DrawItem> items_;
+    lab::Handle<VkDescriptorSetLayout> set_layout_;
+    lab::Handle<VkDescriptorPool> pool_;
+    std::vector<lab::Buffer> uniforms_;        // [frame slot]
+    std::vector<lab::Buffer> lights_;          // [frame slot] GpuLights
+    std::vector<lab::Buffer> materials_;       // [frame slot] GpuMaterial[kMaxMaterials]
+    std::vector<VkDescriptorSet> sets_;        // [frame slot]
+    lab::Handle<VkShaderModule> vertex_shader_;
+    lab::Handle<VkShaderModule> fragment_shader_;
+    std::map<Variant, lab::PipelineBuilder::Result> pipelines_;  // [specialization constants]
+    lab::Handle<VkShaderModule> marker_vertex_shader_;
+    lab::Handle<VkShaderModule> marker_fragment_shader_;
+    lab::PipelineBuilder::Result marker_pipeline_;
+};

@@ -1,0 +1,268 @@
+// test_lab2_render.cpp — the real lab 2 binary, rendering headless, against the CPU reference.
+//
+// Each test runs
+//     lab2_lighting --scene FILE --headless --validate --out OUT.png --width W --height H
+// and compares the PNG with ref::render_reference() of the same scene, shaded by
+// ref::make_lighting_shader() (tests/reference/cpu_lighting.*: the equation of
+// docs/lighting.md in double precision, written independently of the shaders).
+//
+// Acceptance (per-pixel Phong shading, and also flat and Gouraud, whose reference evaluates
+// the same places — face normal per pixel, equation per vertex): every pixel away from edges
+// within 2/255 per channel, at most 0.5 % of all pixels beyond it. "Edges" are silhouettes,
+// plus the discontinuities a lighting model has by design (toon bands, hard spot edges, the
+// N·L = 0 line where a highlight is cut off; ref::discontinuity_key), plus triangle borders
+// for flat shading. Flat and Gouraud also print their error against per-pixel Phong: the lesson.
+//
+// Variants of a scene (another lighting model, ...) are written to test_output/lab2/ with the
+// "lighting" section replaced; relative .obj paths are made absolute first.
+#include "reference/cpu_lighting.h"
+#include "reference/cpu_reference.h"
+#include "reference/image_compare.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab2";
+const std::string kTestScenes = std::string(LAB_SOURCE_DIR) + "/tests/scenes";
+const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
+constexpr int kWidth = 320, kHeight = 180;
+
+std::string quoted(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// `scene_file` with its "lighting" section's keys replaced by `lighting` (a JSON object text),
+// written to test_output/lab2/NAME.json. Returns the new file.
+std::string variant(const std::string& scene_file, const std::string& name, const std::string& lighting) {
+    json scene = json::parse(read_text(scene_file));
+    const json overrides = json::parse(lighting);  // (a temporary would die before the loop body)
+    for (const auto& [key, value] : overrides.items()) scene["lighting"][key] = value;
+    for (json& object : scene["objects"]) {
+        const std::string mesh = object["mesh"];
+        if (mesh.size() > 4 && mesh.substr(mesh.size() - 4) == ".obj" && fs::path(mesh).is_relative())
+            object["mesh"] = (fs::path(scene_file).parent_path() / mesh).string();
+    }
+    fs::create_directories(kOutDir);
+    const std::string out = kOutDir + "/" + name + ".json";
+    std::ofstream(out) << scene.dump(1);
+    return out;
+}
+
+// Renders `scene` with the lab into test_output/lab2/NAME.png; "" after a failed assertion.
+std::string render_with_lab(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight) {
+    fs::create_directories(kOutDir);
+    const std::string png = kOutDir + "/" + name + ".png", log = kOutDir + "/" + name + ".log";
+    std::error_code ec;
+    fs::remove(png, ec);
+    const std::string command = quoted(LAB2_EXE) + " --scene " + quoted(scene) + " --headless --validate --out " +
+                                quoted(png) + " --width " + std::to_string(w) + " --height " + std::to_string(h) +
+                                " > " + quoted(log) + " 2>&1";
+    const int status = std::system(command.c_str());
+    const int exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+    EXPECT_EQ(exit_code, 0) << "lab2_lighting failed on " << scene << ":\n" << read_text(log);
+    if (exit_code != 0) return "";
+    EXPECT_TRUE(fs::exists(png)) << "no PNG written: " << png;
+    return fs::exists(png) ? png : "";
+}
+
+// The reference with the designed discontinuities folded into the object ids, so that
+// ref::edge_mask() treats them like silhouettes.
+ref::RefImage reference_of(const lab::Scene& scene, const ref::ShadeFn& shade) {
+    ref::RefImage image = ref::render_reference(scene, kWidth, kHeight, shade);
+    for (size_t i = 0; i < image.hits.size(); ++i)
+        if (image.object_id[i] >= 0)
+            image.object_id[i] = (image.object_id[i] * 7919 + ref::discontinuity_key(scene, image.hits[i])) & 0x3fffffff;
+    return image;
+}
+
+ref::CompareOptions lit_options(const lab::Scene& scene) {
+    ref::CompareOptions options;
+    options.tolerance = 2;
+    options.triangle_edges = scene.lighting.shading == lab::LightingDesc::Shading::Flat;
+    options.grazing_cos = 0.05;
+    return options;
+}
+
+size_t magenta_pixels(const lab::Image8& image) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
+    return n;
+}
+
+// Renders `scene_file` with the lab and checks it against the reference. Returns the result
+// (and the image through `actual`) for further reporting.
+ref::CompareResult expect_matches_reference(const std::string& scene_file, const std::string& name,
+                                            lab::Image8* actual_out = nullptr) {
+    const std::string png = render_with_lab(scene_file, name);
+    if (png.empty()) return {};
+    const lab::Image8 actual = lab::read_png(png);
+    const lab::Scene scene = lab::load_scene(scene_file);
+    const ref::RefImage reference = reference_of(scene, ref::make_lighting_shader(scene));
+    size_t covered = 0;
+    for (int id : reference.object_id) covered += id >= 0;
+    EXPECT_GT(covered, reference.object_id.size() / 20) << "test scene shows almost nothing";
+    EXPECT_EQ(magenta_pixels(actual), 0u) << "NaN/Inf marker color in " << png;
+
+    const ref::CompareResult result =
+        ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png", lit_options(scene));
+    EXPECT_TRUE(result.passed()) << scene_file << "\n" << result.describe();
+    std::printf("[ compare ] %s: max interior diff %d/255, %.3f%% of pixels beyond 2/255 (%zu edge pixels)\n",
+                name.c_str(), result.max_diff_interior, 100.0 * result.fraction_differing, result.edge_pixels);
+    ::testing::Test::RecordProperty("max_diff_interior", result.max_diff_interior);
+    if (actual_out) *actual_out = actual;
+    return result;
+}
+
+// Mean and max |difference| (1/255 units) over pixels that are not on the edge mask.
+struct ErrorStats {
+    double mean = 0.0;
+    int max = 0;
+    double percent_over_2 = 0.0;
+};
+ErrorStats error_against(const lab::Image8& actual, const ref::RefImage& reference, const ref::CompareOptions& options) {
+    const lab::Image8 expected = ref::encode_srgb(reference);
+    const std::vector<uint8_t> mask = ref::edge_mask(reference, options);
+    ErrorStats s;
+    size_t n = 0, over = 0;
+    for (size_t p = 0; p < mask.size(); ++p) {
+        if (mask[p]) continue;
+        int worst = 0;
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(actual.rgba[4 * p + c]) - int(expected.rgba[4 * p + c])));
+        s.mean += worst;
+        s.max = std::max(s.max, worst);
+        over += worst > 2;
+        ++n;
+    }
+    if (n > 0) {
+        s.mean /= double(n);
+        s.percent_over_2 = 100.0 * double(over) / double(n);
+    }
+    return s;
+}
+
+const std::string kAll = kTestScenes + "/lab2_all_lights.json";
+
+// --- light types ----------------------------------------------------------------
+
+TEST(Lab2Render, DirectionalLight) { expect_matches_reference(kTestScenes + "/lab2_directional.json", "directional"); }
+TEST(Lab2Render, PointLights) { expect_matches_reference(kTestScenes + "/lab2_point.json", "point"); }
+TEST(Lab2Render, SpotLights) { expect_matches_reference(kTestScenes + "/lab2_spot.json", "spot"); }
+TEST(Lab2Render, AllLightTypesTogether) { expect_matches_reference(kAll, "all_lights"); }
+TEST(Lab2Render, SpotEdgeFalloff) {
+    expect_matches_reference(variant(kAll, "spot_edge", R"({"spot_falloff": "edge"})"), "spot_edge");
+}
+TEST(Lab2Render, DefaultScene) {
+    // Markers off: the reference does not draw them.
+    expect_matches_reference(variant(kScenes + "/lab2_lighting.json", "default", R"({"markers": false})"), "default");
+}
+TEST(Lab2Render, ManyLights) {
+    expect_matches_reference(variant(kScenes + "/lab2_many_lights.json", "many", R"({"markers": false})"), "many");
+}
+
+// --- lighting models (per-pixel shading) ----------------------------------------------
+
+class Lab2Model : public ::testing::TestWithParam<std::string> {};
+TEST_P(Lab2Model, MatchesReference) {
+    const std::string model = GetParam();
+    std::string lighting = R"({"model": ")" + model + R"("})";
+    if (model == "cook_torrance_beckmann") lighting = R"({"model": "cook_torrance", "distribution": "beckmann"})";
+    expect_matches_reference(variant(kAll, "model_" + model, lighting), "model_" + model);
+}
+INSTANTIATE_TEST_SUITE_P(AllModels, Lab2Model,
+                         ::testing::Values("lambert", "phong", "blinn_phong", "toon", "oren_nayar", "minnaert",
+                                           "cook_torrance", "cook_torrance_beckmann", "ward"),
+                         [](const auto& info) { return info.param; });
+
+// --- shading models: each against its own reference, and the error vs per-pixel Phong ---
+
+void shading_lesson(const char* shading) {
+    const std::string name = std::string("shading_") + shading;
+    const std::string file = variant(kAll, name, std::string(R"({"shading": ")") + shading + "\"}");
+    lab::Image8 actual;
+    expect_matches_reference(file, name, &actual);
+    if (actual.rgba.empty()) return;
+    const lab::Scene scene = lab::load_scene(file);
+    const ref::RefImage phong = reference_of(scene, ref::make_lighting_shader(scene, lab::LightingDesc::Shading::Phong));
+    ref::CompareOptions options = lit_options(scene);
+    options.triangle_edges = false;
+    const ErrorStats e = error_against(actual, phong, options);
+    std::printf("[ lesson  ] %s vs per-pixel Phong: mean %.2f/255, max %d/255, %.1f%% of pixels beyond 2/255\n",
+                shading, e.mean, e.max, e.percent_over_2);
+    ::testing::Test::RecordProperty("mean_error_vs_phong", std::to_string(e.mean));
+    ::testing::Test::RecordProperty("max_error_vs_phong", e.max);
+    EXPECT_GT(e.max, 2) << "expected " << shading << " shading to differ visibly from per-pixel Phong";
+}
+TEST(Lab2Shading, FlatVsPhong) { shading_lesson("flat"); }
+TEST(Lab2Shading, GouraudVsPhong) { shading_lesson("gouraud"); }
+
+// --- stress: no NaN / Inf may reach a pixel ---------------------------------------------------
+//
+// With "nan_check": "on" the shaders test every intermediate (isnan / isinf) and paint the
+// pixel magenta (255, 0, 255) if any is bad; the stress scenes must have no magenta pixel and
+// match the reference (which documents what each case renders). "self_test" injects a 0/0
+// into every lit pixel to show the detector really fires on this driver.
+
+TEST(Lab2Stress, NumbersMatchReferenceWithoutNaN) {
+    expect_matches_reference(variant(kTestScenes + "/lab2_stress_numbers.json", "stress_numbers", R"({"nan_check": "on"})"),
+                             "stress_numbers");
+}
+TEST(Lab2Stress, GeometryMatchesReferenceWithoutNaN) {
+    // A light inside a sphere and inside a cube, a spot with a 90° cone, the camera exactly
+    // on the floor plane, and a quad whose interpolated normal passes through zero.
+    expect_matches_reference(variant(kTestScenes + "/lab2_stress_geometry.json", "stress_geometry", R"({"nan_check": "on"})"),
+                             "stress_geometry");
+}
+
+class Lab2StressModels : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+TEST_P(Lab2StressModels, NoNaN) {
+    // Every model × shading on the stress scene: not one magenta pixel.
+    const auto [model, shading] = GetParam();
+    const std::string name = "stress_" + model + "_" + shading;
+    const std::string file = variant(kTestScenes + "/lab2_stress_numbers.json", name,
+                                     R"({"nan_check": "on", "model": ")" + model + R"(", "shading": ")" + shading + "\"}");
+    const std::string png = render_with_lab(file, name);
+    if (png.empty()) return;
+    EXPECT_EQ(magenta_pixels(lab::read_png(png)), 0u) << "NaN/Inf reached a pixel: " << png;
+}
+INSTANTIATE_TEST_SUITE_P(AllModels, Lab2StressModels,
+                         ::testing::Combine(::testing::Values<std::string>("lambert", "phong", "blinn_phong", "toon", "oren_nayar",
+                                                              "minnaert", "cook_torrance", "ward"),
+                                            ::testing::Values<std::string>("flat", "gouraud", "phong")),
+                         [](const auto& info) { return std::get<0>(info.param) + "_" + std::get<1>(info.param); });
+
+TEST(Lab2Stress, DetectorFiresOnInjectedNaN) {
+    const std::string file = variant(kTestScenes + "/lab2_stress_numbers.json", "nan_self_test", R"({"nan_check": "self_test"})");
+    const std::string png = render_with_lab(file, "nan_self_test");
+    if (png.empty()) return;
+    const lab::Scene scene = lab::load_scene(file);
+    const ref::RefImage reference = ref::render_reference(scene, kWidth, kHeight);
+    size_t covered = 0;
+    for (int id : reference.object_id) covered += id >= 0;
+    // Every drawn pixel is magenta; silhouette pixels may go either way.
+    EXPECT_GT(magenta_pixels(lab::read_png(png)), covered * 95 / 100);
+}
+
+}  // namespace
