@@ -97,13 +97,15 @@ GpuLights Lighting::pack_lights() const {
     return g;
 }
 
-std::vector<GpuMaterial> Lighting::pack_materials() const {
-    std::vector<GpuMaterial> out;
-    for (const lab::MaterialDesc& m : materials)
-        out.push_back({glm::vec4(m.albedo, 1.0f), glm::vec4(m.specular, m.shininess), glm::vec4(m.emissive, 0.0f),
-                       glm::vec4(m.f0, m.roughness), glm::vec4(m.roughness_x, m.roughness_y, m.minnaert_k, 0.0f)});
-    out.resize(kMaxMaterials);  // the shader declares the whole array
-    return out;
+void Lighting::pack_materials(GpuMaterial* out) const {
+    // Straight into the mapped buffer: nothing is allocated per frame. Unused entries keep
+    // whatever they held; no object indexes them.
+    const size_t n = std::min(materials.size(), size_t(kMaxMaterials));
+    for (size_t i = 0; i < n; ++i) {
+        const lab::MaterialDesc& m = materials[i];
+        out[i] = {glm::vec4(m.albedo, 1.0f), glm::vec4(m.specular, m.shininess), glm::vec4(m.emissive, 0.0f),
+                  glm::vec4(m.f0, m.roughness), glm::vec4(m.roughness_x, m.roughness_y, m.minnaert_k, 0.0f)};
+    }
 }
 
 Variant variant_of(const Lighting& l) {

@@ -73,7 +73,8 @@ struct Lighting {
 
     glm::vec4 ambient_radiance() const;  // rgb: ambient color × intensity, a: 0
     GpuLights pack_lights() const;
-    std::vector<GpuMaterial> pack_materials() const;  // kMaxMaterials entries
+    // Writes the materials into `out` (kMaxMaterials entries; the mapped uniform buffer).
+    void pack_materials(GpuMaterial* out) const;
 };
 
 // The specialization constants (constant_id = index), see lighting.glsl:

@@ -123,13 +123,45 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     std::memcpy(uniforms_[frame.slot].mapped(), &uniforms, sizeof uniforms);
     const GpuLights lights = lighting.pack_lights();
     std::memcpy(lights_[frame.slot].mapped(), &lights, sizeof lights);
-    const std::vector<GpuMaterial> materials = lighting.pack_materials();
-    std::memcpy(materials_[frame.slot].mapped(), materials.data(), materials.size() * sizeof(GpuMaterial));
-    const lab::PipelineBuilder::Result& pipeline = pipeline_for(variant_of(lighting));
+    lighting.pack_materials(static_cast<GpuMaterial*>(materials_[frame.slot].mapped()));
 
     VkCommandBuffer cmd = frame.cmd;
+    if (lighting.lights.empty()) {
+        draw_ambient_only(cmd, frame.slot, lighting);
+    } else {
+        draw_lit(cmd, frame.slot, lighting);
+    }
+    if (lighting.options.markers) draw_markers(cmd, lighting);
+}
+
+// No lights: the equation is e + ambient·a, one constant colour per object — so lab 1's unlit
+// shaders draw it, at lab 1's cost (no normals to interpolate, nothing to evaluate per pixel).
+void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.layout, 0, 1, &sets_[slot], 0,
+                            nullptr);
+    const glm::vec3 ambient = glm::vec3(lighting.ambient_radiance());
+    const GpuMesh* bound = nullptr;
+    for (const DrawItem& item : items_) {
+        if (item.mesh != bound) {
+            const VkDeviceSize offset = 0;
+            VkBuffer vertex_buffer = item.mesh->vertices.get();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+            vkCmdBindIndexBuffer(cmd, item.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+            bound = item.mesh;
+        }
+        const lab::MaterialDesc& m = lighting.materials[item.constants.material];
+        const MarkerConstants constants{item.constants.model, glm::vec4(m.emissive + ambient * m.albedo, 1.0f)};
+        vkCmdPushConstants(cmd, marker_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(MarkerConstants), &constants);
+        vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
+    }
+}
+
+void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
+    const lab::PipelineBuilder::Result& pipeline = pipeline_for(variant_of(lighting));
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 0, 1, &sets_[frame.slot], 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 0, 1, &sets_[slot], 0, nullptr);
     const GpuMesh* bound = nullptr;
     for (const DrawItem& item : items_) {
         if (item.mesh != bound) {  // objects sharing a mesh skip the rebind
@@ -143,7 +175,6 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
                            sizeof(ObjectConstants), &item.constants);
         vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
     }
-    if (lighting.options.markers) draw_markers(cmd, lighting);
 }
 
 void Renderer::draw_markers(VkCommandBuffer cmd, const Lighting& lighting) {

@@ -54,6 +54,8 @@ private:
 
     // The pipeline for the current specialization constants (built on first use, then cached).
     const lab::PipelineBuilder::Result& pipeline_for(const Variant& variant);
+    void draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
+    void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
     void draw_markers(VkCommandBuffer cmd, const Lighting& lighting);
 
     const lab::VulkanContext& vk_;

@@ -178,6 +178,10 @@ TEST(Lab2Render, DefaultScene) {
     // Markers off: the reference does not draw them.
     expect_matches_reference(variant(kScenes + "/lab2_lighting.json", "default", R"({"markers": false})"), "default");
 }
+TEST(Lab2Render, AmbientOnly) {
+    // No lights: lab 2 takes lab 1's unlit path with e + ambient·a per object.
+    expect_matches_reference(variant(kScenes + "/lab2_ambient_only.json", "ambient", R"({"markers": false})"), "ambient");
+}
 TEST(Lab2Render, ManyLights) {
     expect_matches_reference(variant(kScenes + "/lab2_many_lights.json", "many", R"({"markers": false})"), "many");
 }
