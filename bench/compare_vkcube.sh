@@ -25,15 +25,15 @@ seconds() {  # wall time of a command, in seconds
   start=$(date +%s.%N)
   "$@" >/dev/null 2>&1
   end=$(date +%s.%N)
-  echo "$end - $start" | bc -l
+  python3 -c "print($end - $start)"
 }
 
 for round in 1 2 3; do
   t100=$(seconds vkcube --width 1280 --height 720 --present_mode 0 --c 100)
   t700=$(seconds vkcube --width 1280 --height 720 --present_mode 0 --c 700)
-  vkcube_ms=$(echo "($t700 - $t100) * 1000 / 600" | bc -l)
+  vkcube_ms=$(python3 -c "print(($t700 - $t100) * 1000 / 600)")
   line=$("$exe" --benchmark "$frames" --width 1280 --height 720)
   lab_ms=$(sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p' <<<"$line")
   printf 'round %d: vkcube %.3f ms/frame, %s median %.3f ms/frame, ratio lab/vkcube %.2f\n' \
-    "$round" "$vkcube_ms" "$lab" "$lab_ms" "$(echo "$lab_ms / $vkcube_ms" | bc -l)"
+    "$round" "$vkcube_ms" "$lab" "$lab_ms" "$(python3 -c "print($lab_ms / $vkcube_ms)")"
 done
