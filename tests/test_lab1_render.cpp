@@ -12,6 +12,7 @@
 // A failing comparison writes OUT_diff.png (expected | actual | diff) next to the output.
 #include "reference/cpu_reference.h"
 #include "reference/image_compare.h"
+#include "lab_runner.h"
 
 #include <gtest/gtest.h>
 
@@ -31,35 +32,8 @@ const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab1";
 const std::string kTestScenes = std::string(LAB_SOURCE_DIR) + "/tests/scenes";
 const std::string kDefaultScene = std::string(LAB_SOURCE_DIR) + "/scenes/lab1_camera.json";
 
-// Single-quotes a path for /bin/sh.
-std::string quoted(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-struct RunResult {
-    int exit_code = -1;  // −1: did not exit normally (crashed / killed)
-    std::string log;     // stdout + stderr
-};
-
-// Runs the lab with `args` (already quoted), capturing its output in OUT_BASE.log.
-RunResult run_lab(const std::string& args, const std::string& log_path) {
-    fs::create_directories(fs::path(log_path).parent_path());
-    const std::string command = quoted(LAB1_EXE) + " " + args + " > " + quoted(log_path) + " 2>&1";
-    const int status = std::system(command.c_str());
-    RunResult r;
-    if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-    r.log = read_text(log_path);
-    return r;
-}
+// Runs lab 1 (see lab_runner.h).
+RunResult run_lab(const std::string& args, const std::string& log_path) { return ::run_lab(LAB1_EXE, args, log_path); }
 
 std::string render_args(const std::string& scene, const std::string& png, int w, int h) {
     return "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) +

@@ -18,6 +18,7 @@
 #include "reference/cpu_lighting.h"
 #include "reference/cpu_reference.h"
 #include "reference/image_compare.h"
+#include "lab_runner.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -39,19 +40,6 @@ const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab2";
 const std::string kTestScenes = std::string(LAB_SOURCE_DIR) + "/tests/scenes";
 const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
 constexpr int kWidth = 320, kHeight = 180;
-
-std::string quoted(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // `scene_file` with its "lighting" section's keys replaced by `lighting` (a JSON object text),
 // written to test_output/lab2/NAME.json. Returns the new file.
@@ -76,12 +64,12 @@ std::string render_with_lab(const std::string& scene, const std::string& name, i
     const std::string png = kOutDir + "/" + name + ".png", log = kOutDir + "/" + name + ".log";
     std::error_code ec;
     fs::remove(png, ec);
-    const std::string command = quoted(LAB2_EXE) + " --scene " + quoted(scene) + " --headless --validate --out " +
-                                quoted(png) + " --width " + std::to_string(w) + " --height " + std::to_string(h) +
-                                " > " + quoted(log) + " 2>&1";
-    const int status = std::system(command.c_str());
-    const int exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-    EXPECT_EQ(exit_code, 0) << "lab2_lighting failed on " << scene << ":\n" << read_text(log);
+    const RunResult run = run_lab(LAB2_EXE,
+                                  "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) +
+                                      " --width " + std::to_string(w) + " --height " + std::to_string(h),
+                                  log);
+    const int exit_code = run.exit_code;
+    EXPECT_EQ(exit_code, 0) << "lab2_lighting failed on " << scene << ":\n" << run.log;
     if (exit_code != 0) return "";
     EXPECT_TRUE(fs::exists(png)) << "no PNG written: " << png;
     return fs::exists(png) ? png : "";
