@@ -21,7 +21,7 @@ import math
 import os
 import sys
 
-SEGMENTS = 32  # steps around the Y axis
+SEGMENTS = 24  # steps around the Y axis (a lab's model: every triangle costs set-up work on lavapipe)
 
 
 def arc(cx, cy, radius, a0_deg, a1_deg, steps):
@@ -46,15 +46,15 @@ def bezier(p0, p1, p2, steps):
 def profile():
     """The outline (radius, height) from the bottom rim up to the top of the head."""
     pts = [(0.50, 0.00), (0.50, 0.06)]                   # vertical side of the base
-    pts += arc(0.40, 0.06, 0.10, 0, 90, 6)[1:]             # rounded top edge of the base
+    pts += arc(0.40, 0.06, 0.10, 0, 90, 4)[1:]             # rounded top edge of the base
     pts += [(0.32, 0.16), (0.32, 0.19)]                  # sharp ledge, short vertical step
-    pts += arc(0.32, 0.225, 0.035, -90, 90, 8)[1:]         # a bead around the foot
-    pts += bezier((0.32, 0.26), (0.13, 0.30), (0.12, 0.60), 12)[1:]  # flaring body
+    pts += arc(0.32, 0.225, 0.035, -90, 90, 6)[1:]         # a bead around the foot
+    pts += bezier((0.32, 0.26), (0.13, 0.30), (0.12, 0.60), 8)[1:]  # flaring body
     pts += [(0.22, 0.60), (0.22, 0.64), (0.09, 0.64)]    # the collar (sharp edges)
     head_r, head_y = 0.16, 0.84
     a0 = math.degrees(math.asin(-math.sqrt(head_r ** 2 - 0.09 ** 2) / head_r))
     pts.append((0.09, head_y + head_r * math.sin(math.radians(a0))))  # the neck
-    pts += arc(0.0, head_y, head_r, a0, 90, 14)[1:]        # the head, up to the pole
+    pts += arc(0.0, head_y, head_r, a0, 90, 10)[1:]        # the head, up to the pole
     pts[-1] = (0.0, head_y + head_r)                       # exactly on the axis
     return pts
 

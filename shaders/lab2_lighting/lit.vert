@@ -32,5 +32,5 @@ void main() {
         out_gouraud_color = shade(materials[object.material], world.xyz, N, V, out_world_tangent);
         out_bad = lab_bad ? 1.0 : 0.0;
     }
-    gl_Position = frame.projection * frame.view * world;
+    gl_Position = frame.projection * (frame.view * world);
 }

@@ -14,5 +14,7 @@ layout(push_constant) uniform ObjectConstants {
 layout(location = 0) in vec3 in_position;
 
 void main() {
-    gl_Position = frame.projection * frame.view * object.model * vec4(in_position, 1.0);
+    // Right to left, one matrix·vector product per step (P·V·M·p as written would
+    // multiply whole matrices for every vertex first).
+    gl_Position = frame.projection * (frame.view * (object.model * vec4(in_position, 1.0)));
 }
