@@ -111,9 +111,9 @@ void Lighting::pack_materials(GpuMaterial* out) const {
 Variant variant_of(const Lighting& l) {
     return {int32_t(l.options.model),
             int32_t(l.options.shading),
-            l.count(lab::LightDesc::Type::Directional) > 0,
-            l.count(lab::LightDesc::Type::Point) > 0,
-            l.count(lab::LightDesc::Type::Spot) > 0,
+            std::min(l.count(lab::LightDesc::Type::Directional), kMaxDirectional),
+            std::min(l.count(lab::LightDesc::Type::Point), kMaxPoint),
+            std::min(l.count(lab::LightDesc::Type::Spot), kMaxSpot),
             int32_t(l.options.distribution),
             int32_t(l.options.nan_check),
             l.options.toon_bands};

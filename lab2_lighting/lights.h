@@ -2,8 +2,8 @@
 //  * Lighting: what the scene file says and the UI edits (ambient, lights, models, materials);
 //  * the buffer layouts the shaders read (lights: storage, materials: uniform; must match
 //    shaders/lab2_lighting/lighting.glsl);
-//  * Variant: the specialization constants that pick a pipeline variant, so a scene pays only
-//    for the light types and the model it uses;
+//  * Variant: the specialization constants that pick a pipeline variant (model, shading, the
+//    number of lights of each type), so a scene pays only for the lights and the model it uses;
 //  * lighting_panel(): the ImGui window that adds, removes and edits lights and models.
 // The equation itself is in docs/lighting.md and lighting.glsl.
 #pragma once
@@ -78,7 +78,7 @@ struct Lighting {
 };
 
 // The specialization constants (constant_id = index), see lighting.glsl:
-// 0 lighting model, 1 shading, 2 has directional, 3 has point, 4 has spot,
+// 0 lighting model, 1 shading, 2 directional count, 3 point count, 4 spot count,
 // 5 distribution, 6 NaN check, 7 toon bands.
 using Variant = std::array<int32_t, 8>;
 Variant variant_of(const Lighting& lighting);

@@ -255,9 +255,9 @@ TEST(LightBuffer, PacksCountsRadianceAndDropsExtras) {
     EXPECT_FLOAT_EQ(g.point[31].radiance.g, 2.0f);
     EXPECT_FLOAT_EQ(g.directional[0].direction.y, -1.0f);  // normalized
     const Variant v = variant_of(lighting);
-    EXPECT_EQ(v[2], 1);  // has directional
-    EXPECT_EQ(v[3], 1);  // has point
-    EXPECT_EQ(v[4], 0);  // no spot: the spot loop is compiled out
+    EXPECT_EQ(v[2], 1);          // one directional light
+    EXPECT_EQ(v[3], kMaxPoint);  // the extra point lights were dropped
+    EXPECT_EQ(v[4], 0);          // no spot: the spot loop is compiled out
     static_assert(sizeof(GpuLights) == 16 + 8 * 32 + 32 * 48 + 32 * 80, "std430 layout of lighting.glsl");
 }
 

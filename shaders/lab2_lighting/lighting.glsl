@@ -5,9 +5,12 @@
 // --- which parts this pipeline variant contains (specialization constants, lights.h) ---
 layout(constant_id = 0) const int LIGHTING_MODEL = 2;  // see the MODEL_* values below
 layout(constant_id = 1) const int SHADING = 2;         // 0 flat, 1 Gouraud, 2 Phong
-layout(constant_id = 2) const bool HAS_DIRECTIONAL = true;
-layout(constant_id = 3) const bool HAS_POINT = true;
-layout(constant_id = 4) const bool HAS_SPOT = true;
+// How many lights of each type: known when the pipeline is built, so each loop below has a fixed
+// trip count (0 = no loop at all). On lavapipe a loop whose count is read from a buffer cost
+// twice the whole frame: every SIMD lane then fetches its own copy of every light.
+layout(constant_id = 2) const int DIRECTIONAL_COUNT = 1;
+layout(constant_id = 3) const int POINT_COUNT = 1;
+layout(constant_id = 4) const int SPOT_COUNT = 1;
 layout(constant_id = 5) const int DISTRIBUTION = 0;    // Cook-Torrance: 0 GGX, 1 Beckmann
 layout(constant_id = 6) const int NAN_CHECK = 0;       // 0 off, 1 NaN/Inf → magenta, 2 also inject a NaN
 layout(constant_id = 7) const int TOON_BANDS = 4;
@@ -184,33 +187,27 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
 vec3 shade(Material m, vec3 P, vec3 N, vec3 V, vec3 tangent) {
     vec3 color = m.emissive.rgb + frame.ambient.rgb * m.albedo.rgb;
     const vec3 T = LIGHTING_MODEL == MODEL_WARD ? tangent_frame(N, tangent) : vec3(0.0);
-    if (HAS_DIRECTIONAL) {
-        for (uint i = 0; i < min(lights.counts.x, 8u); ++i) {
-            const DirectionalLight light = lights.directional[i];
-            color += light.radiance.rgb * reflectance(m, N, V, -light.direction.xyz, T);
-        }
+    for (int i = 0; i < DIRECTIONAL_COUNT; ++i) {
+        const DirectionalLight light = lights.directional[i];
+        color += light.radiance.rgb * reflectance(m, N, V, -light.direction.xyz, T);
     }
-    if (HAS_POINT) {
-        for (uint i = 0; i < min(lights.counts.y, 32u); ++i) {
-            const PointLight light = lights.point[i];
-            const vec3 to_light = light.position.xyz - P;
-            const float d = length(to_light);
-            const vec3 L = safe_normalize(to_light, N);  // d = 0: the light is on the surface, L = N
-            const float att = attenuation(light.attenuation.xyz, d);
-            check(att);
-            color += light.radiance.rgb * att * reflectance(m, N, V, L, T);
-        }
+    for (int i = 0; i < POINT_COUNT; ++i) {
+        const PointLight light = lights.point[i];
+        const vec3 to_light = light.position.xyz - P;
+        const float d = length(to_light);
+        const vec3 L = safe_normalize(to_light, N);  // d = 0: the light is on the surface, L = N
+        const float att = attenuation(light.attenuation.xyz, d);
+        check(att);
+        color += light.radiance.rgb * att * reflectance(m, N, V, L, T);
     }
-    if (HAS_SPOT) {
-        for (uint i = 0; i < min(lights.counts.z, 32u); ++i) {
-            const SpotLight light = lights.spot[i];
-            const vec3 to_light = light.position.xyz - P;
-            const float d = length(to_light);
-            const vec3 L = safe_normalize(to_light, N);
-            const float att = attenuation(light.attenuation.xyz, d) * spot_factor(light.cone, dot(-L, light.direction.xyz));
-            check(att);
-            color += light.radiance.rgb * att * reflectance(m, N, V, L, T);
-        }
+    for (int i = 0; i < SPOT_COUNT; ++i) {
+        const SpotLight light = lights.spot[i];
+        const vec3 to_light = light.position.xyz - P;
+        const float d = length(to_light);
+        const vec3 L = safe_normalize(to_light, N);
+        const float att = attenuation(light.attenuation.xyz, d) * spot_factor(light.cone, dot(-L, light.direction.xyz));
+        check(att);
+        color += light.radiance.rgb * att * reflectance(m, N, V, L, T);
     }
     check(color);
     return color;
