@@ -84,6 +84,12 @@ TEST(Lab1Render, DefaultScene) {
     expect_matches_reference(kDefaultScene, "default_640x360", 640, 360);
 }
 
+TEST(Lab1Render, EveryPrimitiveAndAModel) {
+    // All eight primitives (coarse tessellations, so facets and seams show) and the pawn with
+    // its own .mtl material.
+    expect_matches_reference(kTestScenes + "/lab1_all_primitives.json", "all_primitives", 640, 360);
+}
+
 TEST(Lab1Render, OddImageSize) {
     // 97 × 61: no dimension divides evenly, aspect 1.59.
     expect_matches_reference(kDefaultScene, "default_97x61", 97, 61);

@@ -158,6 +158,11 @@ const std::string kAll = kTestScenes + "/lab2_all_lights.json";
 TEST(Lab2Render, DirectionalLight) { expect_matches_reference(kTestScenes + "/lab2_directional.json", "directional"); }
 TEST(Lab2Render, PointLights) { expect_matches_reference(kTestScenes + "/lab2_point.json", "point"); }
 TEST(Lab2Render, SpotLights) { expect_matches_reference(kTestScenes + "/lab2_spot.json", "spot"); }
+TEST(Lab2Render, EveryPrimitiveAndAModelLit) {
+    // Normals of every primitive (coarse, so hard and smooth edges both show) and of the pawn,
+    // whose normals the OBJ loader computes with the crease angle.
+    expect_matches_reference(kTestScenes + "/lab2_all_primitives.json", "all_primitives");
+}
 TEST(Lab2Render, AllLightTypesTogether) { expect_matches_reference(kAll, "all_lights"); }
 TEST(Lab2Render, SpotEdgeFalloff) {
     expect_matches_reference(variant(kAll, "spot_edge", R"({"spot_falloff": "edge"})"), "spot_edge");
