@@ -201,7 +201,9 @@ int run_lab(int argc, char** argv, const LabInfo& info,
         }
         return 0;
     } catch (const CliError& e) {
-        std::fprintf(stderr, "%s: error: %s (try --help)\n", name.c_str(), e.what());
+        const std::string message = e.what();
+        const bool has_hint = message.find("--help") != std::string::npos || message.find("did you mean") != std::string::npos;
+        std::fprintf(stderr, "%s: error: %s%s\n", name.c_str(), message.c_str(), has_hint ? "" : " (try --help)");
         return 2;
     } catch (const SceneError& e) {
         std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
