@@ -574,7 +574,8 @@ void validate_obj_text(const std::string& text, const std::string& file) {
 // Collects warnings: printed once each to stderr as "warning: FILE: reason".
 class Warnings {
 public:
-    Warnings(std::string file, std::vector<std::string>& out) : file_(std::move(file)), out_(out) {}
+    Warnings(std::string file, std::vector<std::string>& out, bool print)
+        : file_(std::move(file)), out_(out), print_(print) {}
     void add(std::string reason) {
         for (char& ch : reason) {
             if (static_cast<unsigned char>(ch) < 0x20) ch = ' ';
@@ -582,7 +583,7 @@ public:
         while (!reason.empty() && (reason.back() == ' ' || reason.back() == '.')) reason.pop_back();
         if (reason.empty() || std::find(out_.begin(), out_.end(), reason) != out_.end()) return;
         out_.push_back(reason);
-        std::cerr << "warning: " << file_ << ": " << reason << "\n";
+        if (print_) std::cerr << "warning: " << file_ << ": " << reason << "\n";
     }
     // tinyobjloader reports several problems as one string, one per line.
     void add_lines(const std::string& text) {
@@ -597,6 +598,7 @@ public:
 private:
     std::string file_;
     std::vector<std::string>& out_;
+    bool print_;
 };
 
 // Opens `mtllib` files for tinyobjloader: only regular files of sane size
@@ -701,9 +703,9 @@ std::vector<glm::vec3> compute_crease_normals(const std::vector<glm::dvec3>& fac
 
 }  // namespace
 
-LoadedModel load_obj(const std::string& path, float crease_deg, bool normalize) {
+LoadedModel load_obj(const std::string& path, float crease_deg, bool normalize, bool print_warnings) {
     LoadedModel model;
-    Warnings warnings(path, model.warnings);
+    Warnings warnings(path, model.warnings, print_warnings);
 
     std::string text, why;
     if (!read_small_file(path, kMaxObjBytes, text, why)) fail(path, 0, why);
@@ -863,22 +865,36 @@ LoadedModel load_obj(const std::string& path, float crease_deg, bool normalize) 
 }
 
 Mesh make_mesh(const ObjectDesc& object) {
+    MeshLibrary library;
+    return library.mesh(object);
+}
+
+Mesh MeshLibrary::mesh(const ObjectDesc& object) {
     if (!object.mesh_path.empty()) {
         std::string ext = std::filesystem::path(object.mesh_path).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         if (ext != ".obj") fail(object.mesh_path, 0, "unsupported model format (only .obj)");
-        LoadedModel model = load_obj(object.mesh_path, object.crease_deg, object.normalize);
-        if (object.obj_material == ObjectDesc::kAllTriangles) return std::move(model.mesh);
+        // A model split into one object per .mtl material is read once. Its warnings were
+        // printed when the scene loader split it; a whole model prints them here.
+        const std::string key = object.mesh_path + "|" + std::to_string(object.crease_deg) + "|" +
+                                std::to_string(object.normalize);
+        auto it = models_.find(key);
+        if (it == models_.end()) {
+            const bool split = object.obj_material != ObjectDesc::kAllTriangles;
+            it = models_.emplace(key, load_obj(object.mesh_path, object.crease_deg, object.normalize, !split)).first;
+        }
+        const LoadedModel& model = it->second;
+        if (object.obj_material == ObjectDesc::kAllTriangles) return model.mesh;
         if (object.obj_material < -1 || object.obj_material >= int(model.materials.size()))
             fail(object.mesh_path, 0, "no material number " + std::to_string(object.obj_material));
         // Keep only the triangles of one .mtl material (see expand_model_materials in scene.cpp).
-        std::vector<uint32_t> kept;
+        Mesh part;
+        part.vertices = model.mesh.vertices;
         for (size_t t = 0; t < model.triangle_material.size(); ++t)
             if (model.triangle_material[t] == object.obj_material)
-                kept.insert(kept.end(), model.mesh.indices.begin() + long(3 * t),
-                            model.mesh.indices.begin() + long(3 * t + 3));
-        model.mesh.indices = std::move(kept);
-        return model.mesh;
+                part.indices.insert(part.indices.end(), model.mesh.indices.begin() + long(3 * t),
+                                    model.mesh.indices.begin() + long(3 * t + 3));
+        return part;
     }
     // 0 = the primitive's default tessellation (see docs/meshes.md).
     const auto pick = [](int value, int fallback) { return value > 0 ? value : fallback; };

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -75,7 +76,8 @@ struct LoadedModel {
 // unit box (largest extent 1) centered at the origin. OBJ texture coordinates are
 // flipped (v' = 1 − v) to the top-left origin used everywhere here.
 // Throws std::runtime_error with one line "FILE[:LINE]: reason".
-LoadedModel load_obj(const std::string& path, float crease_deg = 60.0f, bool normalize = false);
+LoadedModel load_obj(const std::string& path, float crease_deg = 60.0f, bool normalize = false,
+                     bool print_warnings = true);
 
 struct ObjectDesc;
 // The mesh an object names: a primitive name ("plane", "cube", "sphere",
@@ -83,5 +85,15 @@ struct ObjectDesc;
 // 0 pick the defaults) or, when mesh_path is set, an .obj file. Throws
 // std::runtime_error with a one-line message for unknown names / bad files.
 Mesh make_mesh(const ObjectDesc& object);
+
+// The same, for all objects of one scene: each model file is read once, however many
+// objects (or .mtl material parts) use it. Keep one for one scene build, then drop it.
+class MeshLibrary {
+public:
+    Mesh mesh(const ObjectDesc& object);
+
+private:
+    std::map<std::string, LoadedModel> models_;  // [path | crease | normalize]
+};
 
 }  // namespace lab

@@ -18,11 +18,12 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
                    const std::string& shader_dir)
     : vk_(vk) {
     // Geometry: upload each distinct mesh once, remember what to draw.
+    lab::MeshLibrary library;  // reads each model file once
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
-            const lab::Mesh mesh = lab::make_mesh(object);
+            const lab::Mesh mesh = library.mesh(object);
             GpuMesh gpu{
                 lab::Buffer::device_local(vk, mesh.vertices.data(), mesh.vertices.size() * sizeof(lab::Vertex),
                                           VK_BUFFER_USAGE_VERTEX_BUFFER_BIT),

@@ -734,6 +734,12 @@ TEST(SceneLoader, ModelWithoutMaterialUsesItsMtl) {
     EXPECT_EQ(lab::make_mesh(s.objects[0]).indices.size(), 3u);
     EXPECT_EQ(lab::make_mesh(s.objects[1]).indices.size(), 6u);
     EXPECT_EQ(lab::make_mesh(s.objects[2]).indices.size(), 3u);
+    // A MeshLibrary (one read of the file for all parts) gives the same parts.
+    lab::MeshLibrary library;
+    for (const lab::ObjectDesc& part : s.objects) {
+        EXPECT_EQ(library.mesh(part).indices, lab::make_mesh(part).indices);
+        EXPECT_EQ(library.mesh(part).vertices.size(), lab::make_mesh(part).vertices.size());
+    }
 }
 
 TEST(SceneLoader, ModelWithAMaterialKeyIsOneObject) {

@@ -195,8 +195,9 @@ struct SceneData {
 
 std::shared_ptr<const SceneData> scene_data(const lab::Scene& scene) {
     auto data = std::make_shared<SceneData>();
+    lab::MeshLibrary library;  // each model file read once
     for (const lab::ObjectDesc& object : scene.objects) {
-        data->meshes.push_back(lab::make_mesh(object));
+        data->meshes.push_back(library.mesh(object));
         const glm::dmat4 m = ref::model_matrix(object);
         glm::dmat3 n = normal_matrix(m);
         double largest = 0.0;

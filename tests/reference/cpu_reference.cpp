@@ -367,9 +367,10 @@ void SceneGeometry::Impl::build(int node, int first, int count, int depth) {
 }
 
 SceneGeometry::SceneGeometry(const lab::Scene& scene) : impl_(new Impl) {
+    lab::MeshLibrary library;  // each model file read once
     for (size_t o = 0; o < scene.objects.size(); ++o) {
         const lab::ObjectDesc& object = scene.objects[o];
-        lab::Mesh mesh = lab::make_mesh(object);
+        lab::Mesh mesh = library.mesh(object);
         const glm::dmat4 m = ref::model_matrix(object);
         // Normals transform with the inverse transpose of the model matrix's 3×3 part.
         impl_->normal_matrices.push_back(glm::transpose(glm::inverse(glm::dmat3(m))));
