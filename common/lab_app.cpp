@@ -189,6 +189,11 @@ int run_lab(int argc, char** argv, const LabInfo& info,
             std::printf("%s", usage(name).c_str());
             return 0;
         }
+        if (!options.out.empty()) {  // fail before rendering, not after
+            const std::filesystem::path folder = std::filesystem::absolute(options.out).parent_path();
+            if (!std::filesystem::is_directory(folder))
+                throw CliError("--out " + options.out + ": folder " + folder.string() + " does not exist");
+        }
         const Scene scene = load_scene(options.scene);
         {
             LabApp app(info, options, &validation_messages);

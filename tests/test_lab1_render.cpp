@@ -167,4 +167,13 @@ TEST(Lab1Render, MissingSceneFileExitsWithCode2) {
     EXPECT_FALSE(fs::exists(png));
 }
 
+TEST(Lab1Render, OutputIntoAMissingFolderExitsWithCode2BeforeRendering) {
+    const RunResult run = run_lab(render_args(kDefaultScene, kOutDir + "/no_such_folder/x.png", 64, 64),
+                                  kOutDir + "/missing_folder.log");
+    EXPECT_EQ(run.exit_code, 2) << run.log;
+    EXPECT_NE(run.log.find("no_such_folder"), std::string::npos) << run.log;
+    EXPECT_EQ(run.log.find("rendered"), std::string::npos) << run.log;  // nothing was rendered
+    EXPECT_FALSE(fs::exists(kOutDir + "/no_such_folder"));
+}
+
 }  // namespace
