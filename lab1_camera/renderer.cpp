@@ -23,14 +23,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
-            const lab::Mesh mesh = library.mesh(object);
-            GpuMesh gpu{
-                lab::Buffer::device_local(vk, mesh.vertices.data(), mesh.vertices.size() * sizeof(lab::Vertex),
-                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT),
-                lab::Buffer::device_local(vk, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
-                                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT),
-                static_cast<uint32_t>(mesh.indices.size())};
-            it = meshes_.emplace(key, std::move(gpu)).first;
+            it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
         }
         const lab::MaterialDesc& material = scene.materials.at(object.material);
         items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
@@ -66,13 +59,10 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     VkCommandBuffer cmd = frame.cmd;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &sets_[frame.slot], 0, nullptr);
-    const GpuMesh* bound = nullptr;
+    const lab::GpuMesh* bound = nullptr;
     for (const DrawItem& item : items_) {
         if (item.mesh != bound) {  // objects sharing a mesh skip the rebind
-            const VkDeviceSize offset = 0;
-            VkBuffer vertex_buffer = item.mesh->vertices.get();
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
-            vkCmdBindIndexBuffer(cmd, item.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+            lab::bind_mesh(cmd, *item.mesh);
             bound = item.mesh;
         }
         vkCmdPushConstants(cmd, pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,

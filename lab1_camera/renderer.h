@@ -2,6 +2,7 @@
 #pragma once
 
 #include "buffer.h"
+#include "gpu_mesh.h"
 #include "pipeline_builder.h"
 #include "render_target.h"
 #include "scene.h"
@@ -31,18 +32,13 @@ private:
         glm::mat4 model;
         glm::vec4 albedo;
     };
-    struct GpuMesh {
-        lab::Buffer vertices;
-        lab::Buffer indices;
-        uint32_t index_count = 0;
-    };
     struct DrawItem {
-        const GpuMesh* mesh;
+        const lab::GpuMesh* mesh;
         ObjectConstants constants;
     };
 
     const lab::VulkanContext& vk_;
-    std::map<std::string, GpuMesh> meshes_;  // one upload per distinct mesh
+    std::map<std::string, lab::GpuMesh> meshes_;  // one upload per distinct mesh
     std::vector<DrawItem> items_;
     lab::Handle<VkDescriptorSetLayout> set_layout_;
     lab::Handle<VkDescriptorPool> pool_;

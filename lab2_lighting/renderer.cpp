@@ -26,11 +26,6 @@ void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
     if (largest > 0.0) n /= largest;
     for (int c = 0; c < 3; ++c) columns[c] = glm::vec4(glm::vec3(n[c]), 0.0f);
 }
-
-lab::Buffer upload(const lab::VulkanContext& vk, const lab::Mesh& mesh, VkBufferUsageFlags usage, bool indices) {
-    return indices ? lab::Buffer::device_local(vk, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), usage)
-                   : lab::Buffer::device_local(vk, mesh.vertices.data(), mesh.vertices.size() * sizeof(lab::Vertex), usage);
-}
 }  // namespace
 
 Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
@@ -43,14 +38,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
-            const lab::Mesh mesh = library.mesh(object);
-            GpuMesh gpu{
-                lab::Buffer::device_local(vk, mesh.vertices.data(), mesh.vertices.size() * sizeof(lab::Vertex),
-                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT),
-                lab::Buffer::device_local(vk, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
-                                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT),
-                static_cast<uint32_t>(mesh.indices.size())};
-            it = meshes_.emplace(key, std::move(gpu)).first;
+            it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
         }
         DrawItem item{&it->second, {lab::model_matrix(object), {}, uint32_t(lighting.material_index(object.material))}};
         normal_matrix(item.constants.model, item.constants.normal_matrix);
@@ -59,9 +47,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     // Light markers: a cube per point light, a cone per spot and directional light.
     for (const auto& [key, mesh] : {std::pair<std::string, lab::Mesh>{"marker|cube", lab::make_cube()},
                                     std::pair<std::string, lab::Mesh>{"marker|cone", lab::make_cone(16)}})
-        meshes_.emplace(key, GpuMesh{upload(vk, mesh, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, false),
-                                     upload(vk, mesh, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, true),
-                                     static_cast<uint32_t>(mesh.indices.size())});
+        meshes_.emplace(key, lab::upload_mesh(vk, mesh));
 
     // Per frame in flight: the frame uniforms, the light storage buffer, the material uniform buffer
     // and a descriptor set, so the CPU can write frame N+1's camera and lights while the GPU still
@@ -142,13 +128,10 @@ void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Light
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.layout, 0, 1, &sets_[slot], 0,
                             nullptr);
     const glm::vec3 ambient = glm::vec3(lighting.ambient_radiance());
-    const GpuMesh* bound = nullptr;
+    const lab::GpuMesh* bound = nullptr;
     for (const DrawItem& item : items_) {
         if (item.mesh != bound) {
-            const VkDeviceSize offset = 0;
-            VkBuffer vertex_buffer = item.mesh->vertices.get();
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
-            vkCmdBindIndexBuffer(cmd, item.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+            lab::bind_mesh(cmd, *item.mesh);
             bound = item.mesh;
         }
         const lab::MaterialDesc& m = lighting.materials[item.constants.material];
@@ -163,13 +146,10 @@ void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& ligh
     const lab::PipelineBuilder::Result& pipeline = pipeline_for(variant_of(lighting));
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 0, 1, &sets_[slot], 0, nullptr);
-    const GpuMesh* bound = nullptr;
+    const lab::GpuMesh* bound = nullptr;
     for (const DrawItem& item : items_) {
         if (item.mesh != bound) {  // objects sharing a mesh skip the rebind
-            const VkDeviceSize offset = 0;
-            VkBuffer vertex_buffer = item.mesh->vertices.get();
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
-            vkCmdBindIndexBuffer(cmd, item.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+            lab::bind_mesh(cmd, *item.mesh);
             bound = item.mesh;
         }
         vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
@@ -182,7 +162,7 @@ void Renderer::draw_markers(VkCommandBuffer cmd, const Lighting& lighting) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.pipeline);
     for (const lab::LightDesc& light : lighting.lights) {
         const bool point = light.type == lab::LightDesc::Type::Point;
-        const GpuMesh& mesh = meshes_.at(point ? "marker|cube" : "marker|cone");
+        const lab::GpuMesh& mesh = meshes_.at(point ? "marker|cube" : "marker|cone");
         // The cone's apex (+Y) points the way the light travels; a directional light's
         // arrow floats 3 units up-light of the origin.
         const glm::vec3 d = glm::length(light.direction) > 0.0f ? glm::normalize(light.direction) : glm::vec3(0, -1, 0);
@@ -193,10 +173,7 @@ void Renderer::draw_markers(VkCommandBuffer cmd, const Lighting& lighting) {
         model = model * glm::mat4(glm::mat3(point ? 0.12f : 0.2f));
         const float brightest = std::max({light.color.r, light.color.g, light.color.b, 1e-6f});
         const MarkerConstants constants{model, glm::vec4(light.color / brightest, 1.0f)};
-        VkBuffer vertex_buffer = mesh.vertices.get();
-        const VkDeviceSize offset = 0;
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
-        vkCmdBindIndexBuffer(cmd, mesh.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+        lab::bind_mesh(cmd, mesh);
         vkCmdPushConstants(cmd, marker_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(MarkerConstants), &constants);
         vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "buffer.h"
+#include "gpu_mesh.h"
 #include "lights.h"
 #include "pipeline_builder.h"
 #include "render_target.h"
@@ -37,13 +38,8 @@ private:
         glm::vec4 normal_matrix[3];  // columns of the inverse transpose of the model's 3×3
         uint32_t material;           // index into the material buffer
     };
-    struct GpuMesh {
-        lab::Buffer vertices;
-        lab::Buffer indices;
-        uint32_t index_count = 0;
-    };
     struct DrawItem {
-        const GpuMesh* mesh;
+        const lab::GpuMesh* mesh;
         ObjectConstants constants;
     };
     // The markers use lab 1's unlit shaders: a model matrix and a flat color.
@@ -60,7 +56,7 @@ private:
 
     const lab::VulkanContext& vk_;
     VkRenderPass render_pass_;
-    std::map<std::string, GpuMesh> meshes_;  // one upload per distinct mesh
+    std::map<std::string, lab::GpuMesh> meshes_;  // one upload per distinct mesh
     std::vector<DrawItem> items_;
     lab::Handle<VkDescriptorSetLayout> set_layout_;
     lab::Handle<VkDescriptorPool> pool_;
