@@ -69,7 +69,7 @@ void lighting_panel(Lighting& l) {
     ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 390.0f, 10.0f), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380.0f, 0.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Lighting");
-    ImGui::TextDisabled("edits last until the scene file is reloaded\n(R, or the file changes): then all comes from the file");
+    ImGui::TextDisabled("R (or saving the scene file) reloads it:\nthe file's values replace these edits.");
     enum_combo("lighting model", l.options.model, kModels, 8);
     enum_combo("shading", l.options.shading, kShadings, 3);
     enum_combo("spot falloff", l.options.spot_falloff, kFalloffs, 2);
