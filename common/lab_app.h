@@ -13,6 +13,7 @@
 #include "imgui_layer.h"
 #include "render_target.h"
 #include "scene.h"
+#include "status_file.h"
 #include "vk_context.h"
 
 #include <functional>
@@ -77,6 +78,7 @@ private:
     std::unique_ptr<RenderTarget> target_;
     HeadlessTarget* headless_ = nullptr;  // == target_ when headless
     std::unique_ptr<ImGuiLayer> ui_;
+    std::unique_ptr<StatusFile> status_;  // LAB_STATUS_FILE: a line per frame for bench/soak.sh
     MouseInput mouse_;
     glm::dvec2 last_cursor_{0.0};
     bool have_cursor_ = false;

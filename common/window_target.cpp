@@ -47,6 +47,9 @@ Window::Window(const std::string& title, uint32_t width, uint32_t height) {
         throw VulkanError("GLFW: cannot create a " + std::to_string(width) + "x" + std::to_string(height) + " window");
     }
     glfwSetWindowUserPointer(window_, this);
+    // A key tapped between two frames still counts once (glfwGetKey reports it until read):
+    // without this, a quick tap at a low frame rate — or while the lab sleeps — is lost.
+    glfwSetInputMode(window_, GLFW_STICKY_KEYS, GLFW_TRUE);
     glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->resized_ = true;
     });

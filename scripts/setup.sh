@@ -16,6 +16,7 @@ packages=(
   libgtest-dev
   assimp-testmodels            # real-world OBJ files for the mesh loader tests
   xvfb xauth                   # window tests run under a virtual X server
+  openbox xdotool x11-utils jq # the window soak (bench/soak.sh): a window manager, input, xprop, scene edits
 )
 
 missing=()
