@@ -32,7 +32,7 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     mat4 view;
     mat4 projection;
     vec4 camera_position;  // xyz: the eye in world space
-    vec4 ambient;          // rgb: ambient color × intensity; a: 0 (the NaN self-test divides by it)
+    vec4 ambient;          // rgb: ambient color × intensity; a: 0 (the NaN self-test builds on it)
 } frame;
 
 struct DirectionalLight { vec4 direction; vec4 radiance; };
@@ -65,12 +65,19 @@ layout(push_constant) uniform ObjectConstants {
 } object;
 
 // --- NaN / Inf detection (NAN_CHECK != 0): any bad intermediate paints the pixel magenta ---
+// A 32-bit float is NaN or ±Inf exactly when its 8 exponent bits are all ones. The test looks
+// at the bits, not through isnan()/isinf(): a driver's compiler may assume that no NaN or Inf
+// ever occurs and fold those two away (real GPUs do), but it must keep integer operations.
 bool lab_bad = false;
+bool not_finite(float x) {
+    const uint EXPONENT_BITS = 0x7f800000u;
+    return (floatBitsToUint(x) & EXPONENT_BITS) == EXPONENT_BITS;
+}
 void check(float x) {
-    if (NAN_CHECK != 0 && (isnan(x) || isinf(x))) lab_bad = true;
+    if (NAN_CHECK != 0 && not_finite(x)) lab_bad = true;
 }
 void check(vec3 v) {
-    if (NAN_CHECK != 0 && (any(isnan(v)) || any(isinf(v)))) lab_bad = true;
+    if (NAN_CHECK != 0 && (not_finite(v.x) || not_finite(v.y) || not_finite(v.z))) lab_bad = true;
 }
 
 // --- helpers ---
