@@ -16,7 +16,8 @@ void check_imgui_vk(VkResult result) {
 }
 }  // namespace
 
-ImGuiLayer::ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass render_pass, uint32_t image_count) {
+ImGuiLayer::ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass render_pass, uint32_t image_count)
+    : vk_(vk) {
     // The backend allocates (and frees) a descriptor set for its font texture.
     VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -47,6 +48,9 @@ ImGuiLayer::ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass
     info.ImageCount = image_count < 2 ? 2 : image_count;
     info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     info.CheckVkResultFn = check_imgui_vk;
+    // The backend allocates its own memory (font image, vertex and index buffers), one allocation
+    // each: see VulkanContext::LibraryScope.
+    const VulkanContext::LibraryScope backend(vk);
     ImGui_ImplVulkan_Init(&info, render_pass);
 
     vk.run_once([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
@@ -54,6 +58,7 @@ ImGuiLayer::ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass
 }
 
 ImGuiLayer::~ImGuiLayer() {
+    const VulkanContext::LibraryScope backend(vk_);
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
@@ -67,6 +72,7 @@ void ImGuiLayer::new_frame() {
 
 void ImGuiLayer::render(VkCommandBuffer cmd) {
     ImGui::Render();
+    const VulkanContext::LibraryScope backend(vk_);  // may grow its vertex/index buffers
     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
 }
 

@@ -20,6 +20,7 @@ public:
     bool wants_keyboard() const;      // a text field has focus
 
 private:
+    const VulkanContext& vk_;
     Handle<VkDescriptorPool> pool_;
 };
 

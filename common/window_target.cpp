@@ -168,6 +168,7 @@ bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     }
     if (acquired != VK_SUBOPTIMAL_KHR) VK_CHECK(acquired);
     slots_.reset_fence(slot_);  // only once we know we will submit, or the next wait would hang
+    slots_.reset_commands(slot_);
 
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;
