@@ -15,6 +15,9 @@ namespace lab {
 class Buffer {
 public:
     Buffer() = default;
+    Buffer(Buffer&&) noexcept = default;
+    // Not defaulted: member-wise assignment would free the old memory before the old buffer.
+    Buffer& operator=(Buffer&& other) noexcept;
     // A host-visible, coherent, persistently mapped buffer.
     static Buffer host_visible(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage);
     // A device-local buffer holding `data` (uploaded through a temporary staging buffer).
@@ -28,17 +31,23 @@ public:
 private:
     Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory);
 
-    Handle<VkBuffer> buffer_;
+    // Members are destroyed in reverse order: the buffer first, then the memory bound to it.
     Handle<VkDeviceMemory> memory_;
+    Handle<VkBuffer> buffer_;
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
 };
 
 // An image with its memory and one view (render targets, textures).
+// Destroyed in reverse order: view, image, then the memory bound to the image.
 struct Image {
-    Handle<VkImage> image;
     Handle<VkDeviceMemory> memory;
+    Handle<VkImage> image;
     Handle<VkImageView> view;
+
+    Image() = default;
+    Image(Image&&) noexcept = default;
+    Image& operator=(Image&& other) noexcept;  // destroys the old image in the right order first
 };
 
 Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,

@@ -9,8 +9,10 @@
 namespace lab {
 
 namespace {
+// The backend reports every VkResult here; an error must stop the run like any failed Vulkan
+// call (continuing would draw with null handles).
 void check_imgui_vk(VkResult result) {
-    if (result != VK_SUCCESS) std::fprintf(stderr, "ImGui Vulkan backend: %s\n", vk_result_name(result));
+    if (result < 0) throw_vk_error(result, "ImGui Vulkan backend call", __FILE__, __LINE__);
 }
 }  // namespace
 

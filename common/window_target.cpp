@@ -41,6 +41,7 @@ Window::Window(const std::string& title, uint32_t width, uint32_t height) {
         throw VulkanError("GLFW: no Vulkan loader found for windows (use --headless)");
     }
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);  // shown once the device has accepted its size
     window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
     if (!window_) {
         glfwTerminate();
@@ -60,6 +61,7 @@ Window::~Window() {
     glfwTerminate();
 }
 
+void Window::show() { glfwShowWindow(window_); }
 bool Window::should_close() const { return glfwWindowShouldClose(window_); }
 bool Window::take_resized() { return std::exchange(resized_, false); }
 float Window::take_scroll() { return std::exchange(scroll_, 0.0f); }
@@ -142,7 +144,7 @@ void WindowTarget::destroy_swapchain_images() {
 }
 
 void WindowTarget::recreate_swapchain() {
-    vkDeviceWaitIdle(vk_.device());
+    VK_CHECK(vkDeviceWaitIdle(vk_.device()));
     destroy_swapchain_images();
     create_swapchain();
 }

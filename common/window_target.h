@@ -19,6 +19,7 @@ public:
     Window& operator=(const Window&) = delete;
 
     GLFWwindow* handle() const { return window_; }
+    void show();  // the window is created hidden (LabApp checks the size against the device first)
     bool should_close() const;
     // Set by the resize callback; cleared by whoever recreates the swapchain.
     bool take_resized();
