@@ -11,6 +11,7 @@ build="${LAB_BUILD_DIR:-$root/build}"
 
 packages=(
   build-essential cmake pkg-config
+  patch                        # make_diffs.sh --check applies the instructor diffs
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglfw3-dev libglm-dev libstb-dev libimgui-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev

@@ -32,18 +32,25 @@ const LabExe kLabs[] = {{"lab1_camera", LAB1_EXE}, {"lab2_lighting", LAB2_EXE}};
 
 bool has_xvfb_run() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
-// Runs `lab` with `args`, with `env` (NAME=value ...) in front; stdout + stderr in the log.
+// Runs `lab` with `args`, with `env` (NAME=value ...) in front; stdout + stderr in the log. In a
+// window, under xvfb-run: the lab's own exit code is written to a file (xvfb-run's exit code and
+// messages about its own clean-up are not the lab's).
 RunResult run_with_env(const LabExe& lab, const std::string& env, const std::string& args, const std::string& name,
                        bool window = false) {
-    const std::string exe = quoted(lab.path);
-    const std::string prefix = window ? "xvfb-run -a -s '-screen 0 1280x800x24' env " + env + " "
-                                      : "env " + env + " ";
-    const std::string log = kOutDir + "/" + lab.name + "_" + name + ".log";
+    const std::string base = kOutDir + "/" + lab.name + "_" + name;
+    const std::string log = base + ".log", code_file = base + ".exit";
     fs::create_directories(kOutDir);
-    const std::string command = prefix + exe + " " + args + " > " + quoted(log) + " 2>&1";
-    const int status = std::system(command.c_str());
+    std::error_code ec;
+    fs::remove(code_file, ec);
+    const std::string lab_command = "env " + env + " " + quoted(lab.path) + " " + args + " > " + quoted(log) +
+                                    " 2>&1; echo $? > " + quoted(code_file);
+    const std::string command = window ? "xvfb-run -a -s '-screen 0 1280x800x24' sh -c " + quoted(lab_command) +
+                                             " > " + quoted(base + ".xvfb.log") + " 2>&1"
+                                       : lab_command;
+    std::system(command.c_str());
     RunResult r;
-    if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+    const std::string code = read_text(code_file);
+    if (!code.empty()) r.exit_code = std::stoi(code);
     r.log = read_text(log);
     return r;
 }
