@@ -211,7 +211,20 @@ void VulkanContext::pick_physical_device() {
 
     // Prefer a discrete GPU, then an integrated one, then anything (lavapipe is a CPU device).
     int best_score = -1;
+    std::string skipped;  // why devices were passed over, for the error below
     for (VkPhysicalDevice candidate : devices) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(candidate, &props);
+        // The shaders are SPIR-V 1.3, which needs Vulkan 1.1.
+        if (props.apiVersion < VK_API_VERSION_1_1) {
+            const std::string why = std::string("skipping Vulkan device '") + props.deviceName + "': it supports Vulkan " +
+                                    std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
+                                    std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) +
+                                    ", the labs' shaders need 1.1";
+            std::fprintf(stderr, "%s\n", why.c_str());
+            skipped += "; " + why;
+            continue;
+        }
         uint32_t family_count = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(candidate, &family_count, nullptr);
         std::vector<VkQueueFamilyProperties> families(family_count);
@@ -223,8 +236,6 @@ void VulkanContext::pick_physical_device() {
                 vkGetPhysicalDeviceSurfaceSupportKHR(candidate, f, surface_, &can_present);
                 if (!can_present) continue;
             }
-            VkPhysicalDeviceProperties props;
-            vkGetPhysicalDeviceProperties(candidate, &props);
             const int score = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU     ? 3
                               : props.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 2
                                                                                             : 1;
@@ -237,7 +248,7 @@ void VulkanContext::pick_physical_device() {
         }
     }
     if (!physical_) throw VulkanError("no Vulkan device can render" + std::string(presenting_ ? " and present" : "") +
-                                      " (is mesa-vulkan-drivers installed?)");
+                                      " (is mesa-vulkan-drivers installed?)" + skipped);
     vkGetPhysicalDeviceProperties(physical_, &properties_);
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 
