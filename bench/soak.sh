@@ -20,7 +20,8 @@
 # Pass: no crash; every input answered; no validation message (the lab, closed with Alt+F4 at the
 # end, exits 0; it exits 1 after any message) and nothing unexpected on stderr; resident memory
 # after the warm-up — the first minute, or the first third of a shorter run — grows by less than
-# 1 % (the median of the last five samples against the median of the first five after the warm-up).
+# 1 % (after the warm-up: the median of the last quarter of the samples, at least five, against the
+# median of the first quarter).
 # Prints the figures per lab; exit 0 when every lab passed, 1 otherwise, 2 for bad usage.
 # SOAK_KEEP=1 keeps each lab's folder (logs, the RSS samples) even when it passed.
 set -euo pipefail
@@ -51,19 +52,25 @@ now() { date +%s.%N; }
 xdo() { timeout 5 xdotool "$@"; }  # xdotool --sync waits forever for a window that never changes
 elapsed() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.2f", b - a }'; }
 
+# What one lab's soak started; stopped when it ends, and on any exit (a CTest timeout included).
+xvfb_pid="" wm_pid="" lab_pid="" sampler_pid=""
+cleanup_lab() {
+  local p
+  for p in "$lab_pid" "$sampler_pid" "$wm_pid" "$xvfb_pid"; do [[ -n "$p" ]] && kill "$p" 2>/dev/null; done
+  for p in "$lab_pid" "$wm_pid" "$xvfb_pid"; do [[ -n "$p" ]] && wait "$p" 2>/dev/null; done
+  xvfb_pid="" wm_pid="" lab_pid="" sampler_pid=""
+  return 0
+}
+trap cleanup_lab EXIT
+trap 'exit 1' INT TERM
+
 # ---------------------------------------------------------------- one lab
 soak_lab() {
   local lab="$1" exe="$build/$1/$1"
   [[ -x "$exe" ]] || { echo "soak: $lab: not built ($exe)"; return 1; }
   local work; work="$(mktemp -d "${TMPDIR:-/tmp}/soak_${lab}.XXXXXX")"
-  local xvfb_pid="" wm_pid="" lab_pid="" sampler_pid=""
+  xvfb_pid="" wm_pid="" lab_pid="" sampler_pid=""  # global: the exit trap stops them
   local failure=""
-  cleanup_lab() {
-    for p in "$sampler_pid" "$lab_pid" "$wm_pid" "$xvfb_pid"; do
-      [[ -n "$p" ]] && kill "$p" 2>/dev/null && wait "$p" 2>/dev/null
-    done
-    return 0
-  }
   fail() { failure="$*"; echo "soak: $lab: FAIL: $*"; }
 
   # A private X server (-displayfd picks a free display) and a window manager on it.
@@ -277,24 +284,27 @@ soak_lab() {
       [[ "$code" == 0 ]] || fail "exit code $code after closing: $(grep -v '^reload failed' "$work/stderr" | tail -3)"
     fi
   fi
-  kill "$sampler_pid" 2>/dev/null; wait "$sampler_pid" 2>/dev/null || true; sampler_pid=""
+  kill "$sampler_pid" 2>/dev/null; sampler_pid=""
   # Anything on stderr but the expected "reload failed" lines (broken scenes) is a finding.
   local unexpected; unexpected="$(grep -v '^reload failed, keeping the last good scene: ' "$work/stderr" || true)"
   if [[ -z "$failure" && -n "$unexpected" ]]; then fail "unexpected stderr: $(head -3 <<<"$unexpected")"; fi
 
-  # ---- memory: median of 5 samples right after the warm-up vs median of the last 5
+  # ---- memory: after the warm-up, the median of the first quarter of the samples (at least five)
+  # against the median of the last quarter. Medians, because resident memory swings by about an
+  # image (a megabyte) between samples depending on what is allocated at that moment.
   local figures
   figures="$(awk -v t0="$started" -v warm="$warmup" '
     function median(a, n,   i, j, t) { for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
                                       return a[int((n + 1) / 2)] }
     { t = $1 - t0; if (t < 0) next; n_all++; if ($2 > peak) peak = $2; if (n_all == 1) first = $2
-      if (t >= warm) { m++; v[m] = $2 } }
+      if (t >= warm) { m++; v[m] = $2; if (m == 1 || $2 < low) low = $2 } }
     END {
       if (m < 10) { printf "too few samples after the warm-up (%d)", m; exit 1 }
-      for (i = 1; i <= 5; i++) { a[i] = v[i]; b[i] = v[m - 5 + i] }
-      base = median(a, 5); last = median(b, 5)
-      printf "rss_start_kib=%d rss_after_warmup_kib=%d rss_end_kib=%d rss_peak_kib=%d growth_pct=%.3f samples=%d",
-             first, base, last, peak, 100 * (last - base) / base, n_all
+      k = int(m / 4); if (k < 5) k = 5
+      for (i = 1; i <= k; i++) { a[i] = v[i]; b[i] = v[m - k + i] }
+      base = median(a, k); last = median(b, k)
+      printf "rss_start_kib=%d rss_after_warmup_kib=%d rss_end_kib=%d rss_min_kib=%d rss_peak_kib=%d growth_pct=%.3f samples=%d window=%d",
+             first, base, last, low, peak, 100 * (last - base) / base, n_all, k
     }' "$rss_log")" || { [[ -z "$failure" ]] && fail "memory: $figures"; }
   local growth; growth="$(sed -n 's/.*growth_pct=\([-0-9.]*\).*/\1/p' <<<"$figures")"
   if [[ -z "$failure" && -n "$growth" ]] && awk -v g="$growth" 'BEGIN { exit !(g >= 1.0) }'; then
