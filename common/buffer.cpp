@@ -5,19 +5,6 @@
 
 namespace lab {
 
-namespace {
-// Memory for a buffer or an image, of the first type with the wanted properties.
-Handle<VkDeviceMemory> allocate_memory(const VulkanContext& vk, const VkMemoryRequirements& req,
-                                       VkMemoryPropertyFlags properties) {
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = vk.find_memory_type(req.memoryTypeBits, properties);
-    VkDeviceMemory memory;
-    VK_CHECK(vkAllocateMemory(vk.device(), &alloc, nullptr, &memory));
-    VkDevice device = vk.device();
-    return Handle<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-}
-}  // namespace
 
 Buffer::Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
     : size_(size) {
@@ -32,9 +19,9 @@ Buffer::Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags us
 
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    memory_ = allocate_memory(vk, req, memory);
-    VK_CHECK(vkBindBufferMemory(device, buffer, memory_, 0));
-    if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) VK_CHECK(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    memory_ = vk.allocator().allocate(req, memory, /*image=*/false);
+    VK_CHECK(vkBindBufferMemory(device, buffer, memory_.memory(), memory_.offset()));
+    mapped_ = memory_.mapped();  // host-visible blocks stay mapped
 }
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
@@ -108,8 +95,8 @@ Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat forma
 
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device, image, &req);
-    result.memory = allocate_memory(vk, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VK_CHECK(vkBindImageMemory(device, image, result.memory, 0));
+    result.memory = vk.allocator().allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, /*image=*/true);
+    VK_CHECK(vkBindImageMemory(device, image, result.memory.memory(), result.memory.offset()));
 
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = image;

@@ -6,6 +6,7 @@
 //  - device-local buffers filled once through a staging copy (vertices, indices).
 #pragma once
 
+#include "memory.h"
 #include "vk_context.h"
 
 #include <cstddef>
@@ -31,8 +32,9 @@ public:
 private:
     Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory);
 
-    // Members are destroyed in reverse order: the buffer first, then the memory bound to it.
-    Handle<VkDeviceMemory> memory_;
+    // Members are destroyed in reverse order: the buffer first, then the memory bound to it
+    // (a range of a larger block: see memory.h).
+    Allocation memory_;
     Handle<VkBuffer> buffer_;
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
@@ -41,7 +43,7 @@ private:
 // An image with its memory and one view (render targets, textures).
 // Destroyed in reverse order: view, image, then the memory bound to the image.
 struct Image {
-    Handle<VkDeviceMemory> memory;
+    Allocation memory;
     Handle<VkImage> image;
     Handle<VkImageView> view;
 

@@ -22,6 +22,7 @@ HeadlessTarget::~HeadlessTarget() { vkDeviceWaitIdle(vk_.device()); }
 bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     slots_.wait(slot_);
     slots_.reset_fence(slot_);
+    slots_.reset_commands(slot_);
     ++frames_begun_;
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;

@@ -6,6 +6,7 @@
 //    test-only hook read by common/lab_app.cpp) must end the run with exit code 1 and
 //    *no* validation message: the frame loop waits for the GPU before the lab's renderer
 //    (a local of the lab's body) is destroyed while the stack unwinds;
+//  - --validate really reports synchronization hazards and best-practices warnings;
 //  - an image larger than the device allows (its limits queried here, independently of the
 //    labs, through the Vulkan API) is bad input: one line, exit code 2, no PNG.
 #include "lab_runner.h"
@@ -91,6 +92,29 @@ TEST(VulkanCorrectness, FailureAfterSubmitInWindowExitsWithCode1ValidationClean)
         EXPECT_EQ(run.exit_code, 1) << run.log;
         EXPECT_NE(run.log.find("LAB_TEST_FAIL_AFTER_SUBMIT"), std::string::npos) << run.log;
         EXPECT_FALSE(mentions_validation(run.log)) << run.log;
+    }
+}
+
+// --- --validate is strict ------------------------------------------------------------------
+
+// LAB_TEST_VALIDATION_PROBE makes the lab commit one mistake for each of the stricter checks
+// (a write-after-write hazard, a command pool with per-buffer reset): both must be reported.
+TEST(VulkanCorrectness, ValidateReportsSynchronizationHazardsAndBestPractices) {
+    for (const LabExe& lab : kLabs) {
+        for (bool window : {false, true}) {
+            if (window && !has_xvfb_run()) continue;
+            SCOPED_TRACE(std::string(lab.name) + (window ? " window" : " headless"));
+            const RunResult run = run_with_env(lab, "LAB_TEST_VALIDATION_PROBE=1",
+                                               window ? "--validate --frames 2"
+                                                      : "--validate --headless --frames 1 --width 32 --height 32 --out " +
+                                                            quoted(kOutDir + "/probe.png"),
+                                               window ? "probe_window" : "probe_headless", window);
+            EXPECT_EQ(run.exit_code, 1) << run.log;
+            EXPECT_NE(run.log.find("SYNC-HAZARD-WRITE-AFTER-WRITE"), std::string::npos) << run.log;
+            EXPECT_NE(run.log.find("BestPractices-vkCreateCommandPool-command-buffer-reset"), std::string::npos)
+                << run.log;
+            EXPECT_NE(run.log.find("error: 2 validation messages"), std::string::npos) << run.log;
+        }
     }
 }
 
