@@ -171,7 +171,7 @@ soak_lab() {
     sleep 0.1
   done
   [[ -n "$wid" ]] || { fail "no window appeared: $(tail -3 "$work/stderr")"; cleanup_lab; return 1; }
-  mark; answered start frame_after || { cleanup_lab; return 1; }
+  before=0; answered start frame_after || { cleanup_lab; return 1; }  # the first frame
 
   local want_w=0 want_h=0
   resize() {
