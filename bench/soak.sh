@@ -319,7 +319,7 @@ soak_lab() {
             for (i = 1; i <= c; i++) for (j = i + 1; j <= c; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
             printf "%s%d", (k ? " " : ""), a[int((c + 1) / 2)] } }' "$rss_log")"
   local answers=""
-  for k in "${!count[@]}"; do answers+="$k=${count[$k]}x/max${worst[$k]}s, "; done
+  for k in "${!count[@]}"; do answers+="$k=${count[$k]}x/max${worst[$k]:-0}s, "; done
   echo "soak: $lab: $(elapsed "$started") s, $steps inputs, warm-up ${warmup} s; $figures"
   echo "soak: $lab: resident memory per minute (KiB, medians): $per_minute"
   echo "soak: $lab: answers (count, slowest): ${answers%, }"

@@ -93,12 +93,11 @@ bool LabApp::key_down(int glfw_key) const {
 }
 
 bool LabApp::key_pressed(int glfw_key) {
-    const bool down = key_down(glfw_key);
-    auto it = std::find(keys_down_last_frame_.begin(), keys_down_last_frame_.end(), glfw_key);
-    const bool was_down = it != keys_down_last_frame_.end();
-    if (down && !was_down) keys_down_last_frame_.push_back(glfw_key);
-    if (!down && was_down) keys_down_last_frame_.erase(it);
-    return down && !was_down;
+    // From the key events, not the key's state: a tap whose press and release arrive between two
+    // frames, or a second tap before a frame saw the first one's release, still counts.
+    if (!window_) return false;
+    const bool pressed = window_->take_key_press(glfw_key);
+    return pressed && !(ui_ && ui_->wants_keyboard());  // typed into a UI field: not a command
 }
 
 void LabApp::poll_input() {
