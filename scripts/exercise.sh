@@ -118,6 +118,10 @@ prove() {
     echo "grader: $lab has no exercises (skipped)"
     exit 77
   fi
+  if grep -rq "// TODO EXERCISE" "$lab" "shaders/$lab" 2>/dev/null; then
+    echo "grader: this is a student copy of $lab (TODO EXERCISE markers): the grader's proof runs on the complete lab (skipped)"
+    exit 77
+  fi
   local log="$g/$lab.log"
   : >"$log"
   local -a graded_targets runners graded_bins
