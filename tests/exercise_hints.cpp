@@ -40,7 +40,7 @@ std::vector<Marker> scan_markers(const fs::path& root) {
             const std::string name = lab.path().filename().string();
             if (!lab.is_directory() || name.rfind("lab", 0) != 0) continue;
             for (const auto& f : fs::recursive_directory_iterator(lab.path(), ec))
-                if (f.is_regular_file()) files.push_back(f.path());
+                if (f.is_regular_file() && f.path().extension() != ".md") files.push_back(f.path());
         }
     }
     std::sort(files.begin(), files.end());
