@@ -144,7 +144,6 @@ void LabApp::run_window(const Callbacks& cb) {
     const int warmup = options_.benchmark > 0 ? 3 : 0;  // as headless: pipeline compilation, caches
     const int to_draw = options_.benchmark > 0 ? warmup + options_.benchmark + 1 : options_.frames;
     std::vector<double> frame_ms;
-    if (const char* log = std::getenv("LAB_TEST_FRAME_LOG"); log && *log) frame_log_ = std::fopen(log, "w");
 
     RedrawPolicy policy;
     const auto start = Clock::now();
@@ -180,7 +179,6 @@ void LabApp::run_window(const Callbacks& cb) {
         // The frame's cost, from waking up to presenting (not the time spent asleep before it).
         const float work_ms = float(ms_since(woke));
         average_frame_ms_ = average_frame_ms_ == 0.0f ? work_ms : 0.95f * average_frame_ms_ + 0.05f * work_ms;
-        if (frame_log_) std::fprintf(frame_log_, "%d %.3f\n", frame_count, ms_since(start) / 1000.0), std::fflush(frame_log_);
 
         if (options_.benchmark > 0 && frame_count > 1) {
             // As headless: the interval between two consecutive frames finishing on the GPU.
@@ -193,7 +191,6 @@ void LabApp::run_window(const Callbacks& cb) {
         if (measured && frame_count >= to_draw) break;  // --frames N: screenshots, tests
     }
     wait_idle();
-    if (frame_log_) std::fclose(std::exchange(frame_log_, nullptr));
     if (options_.benchmark > 0 && !frame_ms.empty()) {
         print_benchmark("window", frame_ms);
         const double n = double(frame_ms.size());

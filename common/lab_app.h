@@ -97,7 +97,6 @@ private:
     bool redraw_requested_ = false;
     uint32_t last_slot_ = 0;             // frame slot of the last window frame drawn
     std::array<double, 4> phase_ms_{};   // window frames: acquire, UI, record, submit+present (ms)
-    std::FILE* frame_log_ = nullptr;     // test hook LAB_TEST_FRAME_LOG=file: one line per frame drawn
     int fail_after_submit_ = 0;  // test hook LAB_TEST_FAIL_AFTER_SUBMIT=N (0: off)
     int submitted_ = 0;          // frames submitted so far
 };
