@@ -41,7 +41,8 @@ struct Image {
     Handle<VkImageView> view;
 };
 
+// `mip_levels` levels; the view covers all of them.
 Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                      VkImageAspectFlags aspect);
+                      VkImageAspectFlags aspect, uint32_t mip_levels = 1);
 
 }  // namespace lab
