@@ -95,7 +95,7 @@ void camera_panel(lab::LabApp& app, Camera& camera, Controls& controls, const la
 }  // namespace
 
 int main(int argc, char** argv) {
-    const lab::LabInfo info{"lab1_camera", LAB_DEFAULT_SCENE_DIR "/lab1_camera.json"};
+    const lab::LabInfo info{LAB_NAME, LAB_DEFAULT_SCENE_DIR "/" LAB_NAME ".json"};  // scenes/<lab>.json
     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
         Camera camera = Camera::from_scene(scene.camera);
         Controls controls;

@@ -39,6 +39,8 @@ glm::dmat4 look_at_camera_to_world(const glm::dvec3& eye, const glm::dvec3& targ
         const glm::dvec3 axis = f_along_z ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 0.0, 1.0);
         up = side * axis;
     }
+    // EXERCISE look_at: the camera's axes from f and up (right r, true up u; cross products), then C = [r u −f eye] as columns. Checked by LookAt.*, Lab1Render.DefaultScene.
+    // STUB: glm::dmat4 c = glm::translate(glm::dmat4(1.0), eye);  // placed at the eye, but always looking down −Z
     // Orthonormal basis: r ⟂ f and u ⟂ both; r, u, −f is right-handed.
     const glm::dvec3 r = glm::normalize(glm::cross(f, up));
     const glm::dvec3 u = glm::cross(r, f);
@@ -50,6 +52,7 @@ glm::dmat4 look_at_camera_to_world(const glm::dvec3& eye, const glm::dvec3& targ
     c[1] = glm::dvec4(u, 0.0);
     c[2] = glm::dvec4(-f, 0.0);
     c[3] = glm::dvec4(eye, 1.0);
+    // END EXERCISE
     return c;
 }
 
@@ -57,11 +60,14 @@ glm::dmat4 transform_camera_to_world(const glm::dvec3& position, double yaw_deg,
     // Read right to left: roll about the view axis first, then pitch about the
     // camera's X, then yaw about world Y, then move to the position. Yaw last
     // means "turn left/right" always turns about world up, like a person.
+    // EXERCISE transform: C = T(position)·Ry(yaw)·Rx(pitch)·Rz(roll) with glm::translate and glm::rotate (angles in radians()). Checked by Transform.*, Lab1Render.TransformCameraYawPitchRoll.
+    // STUB: return glm::translate(glm::dmat4(1.0), position);  // the angles are ignored
     const glm::dmat4 t = glm::translate(glm::dmat4(1.0), position);
     const glm::dmat4 ry = glm::rotate(glm::dmat4(1.0), radians(yaw_deg), glm::dvec3(0.0, 1.0, 0.0));
     const glm::dmat4 rx = glm::rotate(glm::dmat4(1.0), radians(pitch_deg), glm::dvec3(1.0, 0.0, 0.0));
     const glm::dmat4 rz = glm::rotate(glm::dmat4(1.0), radians(roll_deg), glm::dvec3(0.0, 0.0, 1.0));
     return t * ry * rx * rz;
+    // END EXERCISE
 }
 
 Camera Camera::from_scene(const lab::CameraDesc& desc) {
@@ -89,8 +95,11 @@ glm::dmat4 Camera::camera_to_world() const {
 // Rᵀ·T(−p); glm::inverse computes the same in double.)
 
 glm::dmat4 Camera::projection(double aspect) const {
+    // EXERCISE projection: a right-handed perspective with depth in [0, 1] (glm::perspectiveRH_ZO, fov in radians()), then flip Y for Vulkan. Checked by Projection.*, Lab1Render.DefaultScene.
+    // STUB: glm::dmat4 p(1.0);  // no perspective at all
     glm::dmat4 p = glm::perspectiveRH_ZO(radians(fov_y_deg), aspect, near_plane, far_plane);
     p[1][1] *= -1.0;  // Vulkan's framebuffer Y points down; flip so world +Y is up on screen
+    // END EXERCISE
     return p;
 }
 
@@ -107,17 +116,22 @@ void Camera::set_mode(Mode new_mode) {
         // Recover the angles of R = Ry(yaw)·Rx(pitch)·Rz(roll) from its columns.
         // The back axis is R·(0,0,1) = (cos p·sin y, −sin p, cos p·cos y), so:
         position = p;
+        // EXERCISE mode_switch: pitch and yaw from the back axis, then roll from what is left of r once yaw and pitch are undone. Checked by ModeSwitch.*.
+        // STUB: yaw_deg = pitch_deg = roll_deg = 0.0;  // the view jumps
         pitch_deg = degrees(std::asin(std::clamp(-back.y, -1.0, 1.0)));
-        // At pitch ±90° (gimbal lock) yaw and roll turn about the same axis:
-        // atan2(0, 0) = 0 puts everything into roll, which is still exact.
+        // At pitch ±90° (gimbal lock) yaw and roll turn about the same axis, and back.x,
+        // back.z are (signed) zeros or rounding noise: atan2 picks some yaw (straight down
+        // from a Look-At camera gives −180°) and roll takes the rest — the pose stays exact.
         yaw_deg = degrees(std::atan2(back.x, back.z));
         // What is left after undoing yaw and pitch is Rz(roll): its first column is (cos, sin, 0).
         const glm::dmat3 undo = glm::dmat3(transform_camera_to_world({}, yaw_deg, pitch_deg, 0.0));
         const glm::dvec3 rolled = glm::transpose(undo) * r;
         roll_deg = degrees(std::atan2(rolled.y, rolled.x));
+        // END EXERCISE
     } else {
-        // Keep the old distance to the target (or 1 when there was none) and
-        // use the camera's own up, so a rolled camera stays rolled.
+        // Keep the old distance to the target (at least 1e-3, so there is a target to
+        // look at; 1 if it was not finite) and use the camera's own up, so a rolled
+        // camera stays rolled.
         const double distance = std::max(glm::length(target - eye), 1e-3);
         eye = p;
         target = p - back * (std::isfinite(distance) ? distance : 1.0);

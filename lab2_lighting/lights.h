@@ -3,8 +3,8 @@
 //  * the buffer layouts the shaders read (lights: storage, materials: uniform; must match
 //    shaders/lab2_lighting/lighting.glsl);
 //  * Variant: the specialization constants that pick a pipeline variant (model, shading, the
-//    number of lights of each type), so a scene pays only for the lights and the model it uses;
-//  * lighting_panel(): the ImGui window that adds, removes and edits lights and models.
+//    number of lights of each type), so a scene pays only for the lights and the model it uses.
+// The panel that edits all this is in lighting_panel.h.
 // The equation itself is in docs/lighting.md and lighting.glsl.
 #pragma once
 
@@ -82,6 +82,3 @@ struct Lighting {
 // 5 distribution, 6 NaN check, 7 toon bands.
 using Variant = std::array<int32_t, 8>;
 Variant variant_of(const Lighting& lighting);
-
-// The ImGui window: models, ambient, add / remove / edit lights and materials, markers.
-void lighting_panel(Lighting& lighting);

@@ -11,6 +11,7 @@
 // to the target (Look-At), C switches the camera mode, R reloads the scene
 // (it also reloads by itself when the file changes; the camera stays put).
 #include "camera.h"
+#include "lighting_panel.h"
 #include "lights.h"
 #include "renderer.h"
 
@@ -97,18 +98,19 @@ void camera_panel(lab::LabApp& app, Camera& camera, Controls& controls, const la
 }  // namespace
 
 int main(int argc, char** argv) {
-    const lab::LabInfo info{"lab2_lighting", LAB_DEFAULT_SCENE_DIR "/lab2_lighting.json"};
+    const lab::LabInfo info{LAB_NAME, LAB_DEFAULT_SCENE_DIR "/" LAB_NAME ".json"};  // scenes/<lab>.json
     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
         Camera camera = Camera::from_scene(scene.camera);
         Controls controls;
         Lighting lighting = Lighting::from_scene(scene);
-        auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, LAB_SHADER_DIR);
+        auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, LAB_SHADER_DIR);
         lab::SceneReloader reloader(app.options().scene, scene);
         const auto rebuild = [&](const lab::Scene& fresh) {
-            auto next = std::make_unique<Renderer>(app.vk(), app.target(), fresh, LAB_SHADER_DIR);
+            Lighting reloaded = Lighting::from_scene(fresh);  // replaces the panel's edits (the panel says so)
+            auto next = std::make_unique<Renderer>(app.vk(), app.target(), fresh, reloaded, LAB_SHADER_DIR);
             app.wait_idle();  // in-flight frames may still use the old buffers
             renderer = std::move(next);
-            lighting = Lighting::from_scene(fresh);  // a reload replaces the UI's edits
+            lighting = std::move(reloaded);
         };
 
         app.run({

@@ -19,7 +19,10 @@ std::string mesh_key(const lab::ObjectDesc& object) {
 // its largest element is ±1 (only the direction matters: the shader renormalizes), which
 // keeps float magnitudes near 1 even for scales of 1e-6 or 1e6.
 void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
+    // EXERCISE normal_matrix: the matrix that turns normals with the object: (M₃⁻¹)ᵀ, M₃ the model's 3×3 part (glm::inverse, glm::transpose). Checked by Lab2Render.DefaultScene, Lab2Render.EveryPrimitiveAndAModelLit.
+    // STUB: glm::dmat3 n(1.0);  // identity: the normals do not turn with the object
     glm::dmat3 n = glm::transpose(glm::inverse(glm::dmat3(glm::dmat4(model))));
+    // END EXERCISE
     double largest = 0.0;
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) largest = std::max(largest, std::abs(n[c][r]));
@@ -29,32 +32,35 @@ void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
 }  // namespace
 
 Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
-                   const std::string& shader_dir)
+                   const Lighting& lighting, const std::string& shader_dir)
     : vk_(vk), render_pass_(target.render_pass()) {
     // Geometry: upload each distinct mesh once, remember what to draw.
     lab::MeshLibrary library;  // reads each model file once
-    const Lighting lighting = Lighting::from_scene(scene);
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
             it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
         }
-        DrawItem item{&it->second, {lab::model_matrix(object), {}, uint32_t(lighting.material_index(object.material))}};
-        normal_matrix(item.constants.model, item.constants.normal_matrix);
-        items_.push_back(item);
+        const lab::MaterialDesc& material = scene.materials.at(object.material);
+        items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
+        // Lit: the normal matrix and the material's index instead of its colour.
+        LitConstants& lit = items_.back().lit;
+        lit.model = items_.back().constants.model;
+        normal_matrix(lit.model, lit.normal_matrix);
+        lit.material = uint32_t(lighting.material_index(object.material));
     }
     // Light markers: a cube per point light, a cone per spot and directional light.
     for (const auto& [key, mesh] : {std::pair<std::string, lab::Mesh>{"marker|cube", lab::make_cube()},
                                     std::pair<std::string, lab::Mesh>{"marker|cone", lab::make_cone(16)}})
         meshes_.emplace(key, lab::upload_mesh(vk, mesh));
 
-    // Per frame in flight: the frame uniforms, the light storage buffer, the material uniform buffer
-    // and a descriptor set, so the CPU can write frame N+1's camera and lights while the GPU still
-    // reads frame N's.
+    // One uniform buffer + descriptor set per frame in flight, so the CPU can
+    // write frame N+1's camera while the GPU still reads frame N's. The same for
+    // the lights (a storage buffer) and the materials (a uniform buffer).
     const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const std::vector<lab::DescriptorBinding> bindings = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},   // the fragment shader needs the camera position
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, both},   // lights (Gouraud reads them in the vertex shader)
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both}};  // materials
     set_layout_ = lab::make_descriptor_set_layout(vk, bindings);
@@ -73,35 +79,17 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
                                      material_bytes);
     }
 
-    vertex_shader_ = lab::load_shader(vk, shader_dir, "lit.vert");
-    fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
-    pipeline_for(variant_of(lighting));  // the scene's own variant, built up front
-    marker_vertex_shader_ = lab::load_shader(vk, shader_dir, "unlit.vert");
-    marker_fragment_shader_ = lab::load_shader(vk, shader_dir, "unlit.frag");
-    marker_pipeline_ = lab::PipelineBuilder()
-                           .shaders(marker_vertex_shader_, marker_fragment_shader_)
-                           .vertex_attributes(lab::kPosition)
-                           .descriptor_set(set_layout_)
-                           .push_constants(both, sizeof(ObjectConstants))  // = the lit layout: set 0 stays bound
-                           .build(vk, target.render_pass());
-}
-
-const lab::PipelineBuilder::Result& Renderer::pipeline_for(const Variant& variant) {
-    auto it = pipelines_.find(variant);
-    if (it != pipelines_.end()) return it->second;
-    // Constant i of the shaders (constant_id = i) is variant[i]; booleans are 32-bit too.
-    std::vector<VkSpecializationMapEntry> entries;
-    for (uint32_t i = 0; i < variant.size(); ++i)
-        entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
-    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(variant), variant.data()};
-    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    return pipelines_[variant] = lab::PipelineBuilder()
-                                     .shaders(vertex_shader_, fragment_shader_)
-                                     .vertex_attributes(lab::kPosition | lab::kNormal | lab::kTangent)
-                                     .descriptor_set(set_layout_)
-                                     .push_constants(both, sizeof(ObjectConstants))
-                                     .specialization(&specialization)
-                                     .build(vk_, render_pass_);
+    vertex_shader_ = lab::load_shader(vk, shader_dir, "unlit.vert");
+    fragment_shader_ = lab::load_shader(vk, shader_dir, "unlit.frag");
+    pipeline_ = lab::PipelineBuilder()
+                    .shaders(vertex_shader_, fragment_shader_)
+                    .vertex_attributes(lab::kPosition)
+                    .descriptor_set(set_layout_)
+                    .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, sizeof(ObjectConstants))
+                    .build(vk, target.render_pass());
+    lit_vertex_shader_ = lab::load_shader(vk, shader_dir, "lit.vert");
+    lit_fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
+    lit_pipeline(variant_of(lighting));  // the scene's own variant, built up front
 }
 
 void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,
@@ -118,32 +106,11 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     } else {
         draw_lit(cmd, frame.slot, lighting);
     }
-    if (lighting.options.markers) draw_markers(cmd, lighting);
-}
-
-// No lights: the equation is e + ambient·a, one constant colour per object — so lab 1's unlit
-// shaders draw it, at lab 1's cost (no normals to interpolate, nothing to evaluate per pixel).
-void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.layout, 0, 1, &sets_[slot], 0,
-                            nullptr);
-    const glm::vec3 ambient = glm::vec3(lighting.ambient_radiance());
-    const lab::GpuMesh* bound = nullptr;
-    for (const DrawItem& item : items_) {
-        if (item.mesh != bound) {
-            lab::bind_mesh(cmd, *item.mesh);
-            bound = item.mesh;
-        }
-        const lab::MaterialDesc& m = lighting.materials[item.constants.material];
-        const MarkerConstants constants{item.constants.model, glm::vec4(m.emissive + ambient * m.albedo, 1.0f)};
-        vkCmdPushConstants(cmd, marker_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(MarkerConstants), &constants);
-        vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
-    }
+    if (lighting.options.markers) draw_markers(cmd, frame.slot, lighting);
 }
 
 void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
-    const lab::PipelineBuilder::Result& pipeline = pipeline_for(variant_of(lighting));
+    const lab::PipelineBuilder::Result& pipeline = lit_pipeline(variant_of(lighting));
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 0, 1, &sets_[slot], 0, nullptr);
     const lab::GpuMesh* bound = nullptr;
@@ -153,13 +120,36 @@ void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& ligh
             bound = item.mesh;
         }
         vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(ObjectConstants), &item.constants);
+                           sizeof(LitConstants), &item.lit);
         vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
     }
 }
 
-void Renderer::draw_markers(VkCommandBuffer cmd, const Lighting& lighting) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, marker_pipeline_.pipeline);
+// The lighting model, the shading and the number of lights of each type are specialization
+// constants: each combination is its own pipeline, built when first needed.
+const lab::PipelineBuilder::Result& Renderer::lit_pipeline(const Variant& variant) {
+    auto it = lit_pipelines_.find(variant);
+    if (it != lit_pipelines_.end()) return it->second;
+    // Constant i of the shaders (constant_id = i) is variant[i]; booleans are 32-bit too.
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < variant.size(); ++i)
+        entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(variant), variant.data()};
+    return lit_pipelines_[variant] = lab::PipelineBuilder()
+                                         .shaders(lit_vertex_shader_, lit_fragment_shader_)
+                                         .vertex_attributes(lab::kPosition | lab::kNormal | lab::kTangent)
+                                         .descriptor_set(set_layout_)
+                                         .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                                         sizeof(LitConstants))
+                                         .specialization(&specialization)
+                                         .build(vk_, render_pass_);
+}
+
+// Light markers, drawn unlit in the light's colour: a cube at a point light, a cone along a
+// spot light's axis and along a directional light's direction.
+void Renderer::draw_markers(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &sets_[slot], 0, nullptr);
     for (const lab::LightDesc& light : lighting.lights) {
         const bool point = light.type == lab::LightDesc::Type::Point;
         const lab::GpuMesh& mesh = meshes_.at(point ? "marker|cube" : "marker|cone");
@@ -172,10 +162,30 @@ void Renderer::draw_markers(VkCommandBuffer cmd, const Lighting& lighting) {
                         glm::vec4(position, 1.0f));
         model = model * glm::mat4(glm::mat3(point ? 0.12f : 0.2f));
         const float brightest = std::max({light.color.r, light.color.g, light.color.b, 1e-6f});
-        const MarkerConstants constants{model, glm::vec4(light.color / brightest, 1.0f)};
+        const ObjectConstants constants{model, glm::vec4(light.color / brightest, 1.0f)};
         lab::bind_mesh(cmd, mesh);
-        vkCmdPushConstants(cmd, marker_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(MarkerConstants), &constants);
+        vkCmdPushConstants(cmd, pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(ObjectConstants), &constants);
         vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);
+    }
+}
+
+// Speed: with no lights the equation is e + ambient·a, one constant colour per object, so lab
+// 1's unlit pipeline draws it at lab 1's cost (no normals to interpolate, nothing per pixel).
+void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &sets_[slot], 0, nullptr);
+    const glm::vec3 ambient = glm::vec3(lighting.ambient_radiance());
+    const lab::GpuMesh* bound = nullptr;
+    for (const DrawItem& item : items_) {
+        if (item.mesh != bound) {
+            lab::bind_mesh(cmd, *item.mesh);
+            bound = item.mesh;
+        }
+        const lab::MaterialDesc& m = lighting.materials[item.lit.material];
+        const ObjectConstants constants{item.constants.model, glm::vec4(m.emissive + ambient * m.albedo, 1.0f)};
+        vkCmdPushConstants(cmd, pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(ObjectConstants), &constants);
+        vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
     }
 }

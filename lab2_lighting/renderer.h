@@ -18,7 +18,7 @@
 class Renderer {
 public:
     Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
-             const std::string& shader_dir);
+             const Lighting& lighting, const std::string& shader_dir);
 
     // Records the draw commands for one frame (inside the target's render pass).
     void draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,
@@ -32,8 +32,13 @@ private:
         glm::vec4 camera_position;  // xyz: the eye, for the view direction V
         glm::vec4 ambient;          // rgb: ambient color × intensity
     };
-    // Per-object data, pushed with each draw (116 of the 128 bytes every GPU allows).
+    // Per-object data, pushed with each draw.
     struct ObjectConstants {
+        glm::mat4 model;
+        glm::vec4 albedo;
+    };
+    // Per-object data of the lit pipeline (116 of the 128 bytes every GPU allows).
+    struct LitConstants {
         glm::mat4 model;
         glm::vec4 normal_matrix[3];  // columns of the inverse transpose of the model's 3×3
         uint32_t material;           // index into the material buffer
@@ -41,18 +46,15 @@ private:
     struct DrawItem {
         const lab::GpuMesh* mesh;
         ObjectConstants constants;
-    };
-    // The markers use lab 1's unlit shaders: a model matrix and a flat color.
-    struct MarkerConstants {
-        glm::mat4 model;
-        glm::vec4 color;
+        LitConstants lit{};
     };
 
-    // The pipeline for the current specialization constants (built on first use, then cached).
-    const lab::PipelineBuilder::Result& pipeline_for(const Variant& variant);
-    void draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
     void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
-    void draw_markers(VkCommandBuffer cmd, const Lighting& lighting);
+    // The lit pipeline for the current specialization constants (built on first use, then cached).
+    const lab::PipelineBuilder::Result& lit_pipeline(const Variant& variant);
+    // lab 1's unlit pipeline draws the light markers, and whole scenes without lights.
+    void draw_markers(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
+    void draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
 
     const lab::VulkanContext& vk_;
     VkRenderPass render_pass_;
@@ -66,8 +68,8 @@ private:
     std::vector<VkDescriptorSet> sets_;        // [frame slot]
     lab::Handle<VkShaderModule> vertex_shader_;
     lab::Handle<VkShaderModule> fragment_shader_;
-    std::map<Variant, lab::PipelineBuilder::Result> pipelines_;  // [specialization constants]
-    lab::Handle<VkShaderModule> marker_vertex_shader_;
-    lab::Handle<VkShaderModule> marker_fragment_shader_;
-    lab::PipelineBuilder::Result marker_pipeline_;
+    lab::PipelineBuilder::Result pipeline_;
+    lab::Handle<VkShaderModule> lit_vertex_shader_;
+    lab::Handle<VkShaderModule> lit_fragment_shader_;
+    std::map<Variant, lab::PipelineBuilder::Result> lit_pipelines_;  // [specialization constants]
 };

@@ -32,7 +32,7 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     mat4 view;
     mat4 projection;
     vec4 camera_position;  // xyz: the eye in world space
-    vec4 ambient;          // rgb: ambient color × intensity; a: 0 (the NaN self-test divides by it)
+    vec4 ambient;          // rgb: ambient color × intensity; a: 0 (the NaN self-test builds on it)
 } frame;
 
 struct DirectionalLight { vec4 direction; vec4 radiance; };
@@ -65,12 +65,19 @@ layout(push_constant) uniform ObjectConstants {
 } object;
 
 // --- NaN / Inf detection (NAN_CHECK != 0): any bad intermediate paints the pixel magenta ---
+// A 32-bit float is NaN or ±Inf exactly when its 8 exponent bits are all ones. The test looks
+// at the bits, not through isnan()/isinf(): a driver's compiler may assume that no NaN or Inf
+// ever occurs and fold those two away (real GPUs do), but it must keep integer operations.
 bool lab_bad = false;
+bool not_finite(float x) {
+    const uint EXPONENT_BITS = 0x7f800000u;
+    return (floatBitsToUint(x) & EXPONENT_BITS) == EXPONENT_BITS;
+}
 void check(float x) {
-    if (NAN_CHECK != 0 && (isnan(x) || isinf(x))) lab_bad = true;
+    if (NAN_CHECK != 0 && not_finite(x)) lab_bad = true;
 }
 void check(vec3 v) {
-    if (NAN_CHECK != 0 && (any(isnan(v)) || any(isinf(v)))) lab_bad = true;
+    if (NAN_CHECK != 0 && (not_finite(v.x) || not_finite(v.y) || not_finite(v.z))) lab_bad = true;
 }
 
 // --- helpers ---
@@ -87,14 +94,20 @@ float power(float x, float n) {
 
 // Light falloff 1 / (c + l·d + q·d²); [0, 0, 0] = no falloff; denominator ≥ MIN_DENOMINATOR.
 float attenuation(vec3 k, float d) {
+    // EXERCISE attenuation: 1 / (c + l·d + q·d²) with k = (c, l, q); all zero means no falloff; keep the denominator ≥ MIN_DENOMINATOR. Checked by Lab2Render.PointLights.
+    // STUB: return 1.0;  // no falloff: every point light reaches everywhere at full strength
     if (k.x + k.y + k.z <= 0.0) return 1.0;
     return 1.0 / max(k.x + k.y * d + k.z * d * d, MIN_DENOMINATOR);
+    // END EXERCISE
 }
 
 // Spot cone: cos_theta = cos of the angle between the light's axis and the ray to the point.
 float spot_factor(vec4 cone, float cos_theta) {
+    // EXERCISE spot_cone: 0 outside the cone (cos θ < cone.x), rising linearly with cos θ at the rate cone.y up to 1; cone.y = 0 is a hard edge. Checked by Lab2Render.SpotLights.
+    // STUB: return 1.0;  // no cone: a spot light shines in every direction
     if (cone.y <= 0.0) return cos_theta >= cone.x ? 1.0 : 0.0;  // inner == outer: a hard edge
     return clamp((cos_theta - cone.x) * cone.y, 0.0, 1.0);
+    // END EXERCISE
 }
 
 // The unit tangent for Ward: the mesh tangent made perpendicular to N (any ⟂ vector if it is parallel).
@@ -179,7 +192,10 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
     }
     // Blinn-Phong specular (also for Oren-Nayar and Minnaert, which only change the diffuse part).
     check(diffuse);
+    // EXERCISE blinn_phong: add the specular highlight s·(N·H)ⁿ to the diffuse part (power() handles n = 0). Checked by Lab2Render.DirectionalLight.
+    // STUB: return diffuse;  // matte: no highlights
     return diffuse + s * power(nh, n);
+    // END EXERCISE
 }
 
 // The whole equation at world point P with unit normal N, unit view direction V and the

@@ -30,7 +30,10 @@ void main() {
         const vec3 V = safe_normalize(to_eye, N);  // the eye on the surface: V = N
         color = shade(materials[object.material], P, N, V, in_world_tangent);
     }
-    if (NAN_CHECK == 2) color += vec3(frame.ambient.a / frame.ambient.a);  // 0/0: proves the check works
+    // The self-test proves the check works: a quiet NaN (exponent all ones, top mantissa bit)
+    // made from the bits of a uniform (ambient.a = 0), so no compiler can know it is a NaN and
+    // fold it away (as it may fold x / x to 1), added to the color like a real bad intermediate.
+    if (NAN_CHECK == 2) color += vec3(uintBitsToFloat(0x7fc00000u | floatBitsToUint(frame.ambient.a)));
     if (NAN_CHECK != 0) {
         check(color);
         if (lab_bad) color = vec3(1.0, 0.0, 1.0);

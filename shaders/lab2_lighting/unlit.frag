@@ -1,6 +1,6 @@
 #version 450
-// Lab 1: no lighting yet — every pixel is its material's albedo (linear RGB;
-// the *_SRGB render target encodes it for display).
+// unlit.frag — no lighting: every pixel is the colour pushed with the object, `albedo`
+// (linear RGB; the *_SRGB render target encodes it for display).
 
 layout(push_constant) uniform ObjectConstants {
     mat4 model;
