@@ -6,6 +6,7 @@
 
 #include "buffer.h"
 #include "image_io.h"
+#include "texture_image.h"
 #include "scene.h"
 #include "vk_context.h"
 
