@@ -128,6 +128,9 @@ void Renderer::load_textures(const Lighting& lighting) {
                                         (maps[binding]->empty() ? white_ : textures_.at(*maps[binding])).image.view);
     }
     warnings_.insert(warnings_.end(), samplers_.warnings().begin(), samplers_.warnings().end());
+    if (textured > 0)
+        std::printf("textures: %zu images, %zu samplers for %u materials with maps\n", textures_.size(),
+                    samplers_.size(), textured);
 }
 
 void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,

@@ -253,9 +253,8 @@ void uv_derivatives(const TexturedScene& data, const Hit& hit, const Triangle& t
     *duv_dy = along(dd_dy, dp_dy);
 }
 
-}  // namespace
 
-ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0) {
+std::shared_ptr<TexturedScene> textured_scene(const lab::Scene& scene, int width, int height, bool level0) {
     auto data = std::make_shared<TexturedScene>();
     lab::MeshLibrary library;
     for (const lab::ObjectDesc& object : scene.objects) {
@@ -265,13 +264,36 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
     data->camera = make_camera(scene.camera);
     data->width = width;
     data->height = height;
-    data->level0 = supersample_level0;
+    data->level0 = level0;
     for (const auto& [name, m] : scene.materials)
         for (const std::string* map : {&m.albedo_map, &m.specular_map, &m.emissive_map})
             if (!map->empty()) {
                 const bool mips = m.sampler.mipmaps != Mipmaps::None;
                 if (!data->textures.count({*map, mips})) data->textures[{*map, mips}] = load_texture(*map, mips);
             }
+    return data;
+}
+
+}  // namespace
+
+std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int width, int height) {
+    const std::shared_ptr<TexturedScene> data = textured_scene(scene, width, height, false);
+    return [data, materials = scene.materials](const Hit& hit) {
+        if (!hit.hit) return -1e9;
+        const lab::MaterialDesc& m = materials.at(hit.material);
+        const std::string& map = !m.albedo_map.empty() ? m.albedo_map : !m.specular_map.empty() ? m.specular_map : m.emissive_map;
+        if (map.empty()) return -1e9;
+        const Triangle tri = triangle_of(*data, hit);
+        glm::dvec2 dx, dy;
+        glm::dvec3 dpx, dpy;
+        uv_derivatives(*data, hit, tri, &dx, &dy, &dpx, &dpy);
+        const glm::dvec2 scale(m.uv_scale);
+        return lod(data->texture(map, m.sampler)->levels[0], dx * scale, dy * scale);
+    };
+}
+
+ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0) {
+    const std::shared_ptr<TexturedScene> data = textured_scene(scene, width, height, supersample_level0);
     const lab::LightingDesc::Shading shading_model = scene.lighting.shading;
     return [data, shading_model](const lab::Scene& s, const Hit& hit) -> glm::dvec3 {
         if (!hit.hit) return glm::dvec3(s.background);

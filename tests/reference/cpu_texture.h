@@ -19,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +64,10 @@ glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::
 // "distorted". The UV derivatives come from ray differentials of a width × height image.
 // With `supersample_level0` every lookup is bilinear on level 0 (for render_supersampled).
 ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0 = false);
+
+// The LOD λ of the first map's lookup (albedo, else specular, else emissive) at a hit, from the
+// same ray differentials; −1e9 for misses and materials without maps. λ ≤ 0: magnified.
+std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int width, int height);
 
 // The ground truth for filtering: n × n rays per pixel on a regular grid, each shaded with
 // level-0 bilinear lookups, averaged (linear colour). Misses average in the background.

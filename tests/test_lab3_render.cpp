@@ -1,0 +1,308 @@
+// test_lab3_render.cpp — the real lab 3 binary, rendering headless, against the CPU reference.
+//
+// Each test writes a small scene (test_output/lab3/NAME.json), runs
+//     lab3_textures --scene FILE --headless --validate --out OUT.png --width 320 --height 180
+// and compares the PNG with ref::render_reference() shaded by ref::make_texture_shader()
+// (tests/reference/cpu_texture.*: sampling written from the Vulkan specification, with its own
+// decoding, mip chain and ray-differential LOD). Anisotropy is off in every comparison (the
+// reference does not model it).
+//
+// Acceptance on interior pixels (away from silhouettes, and for nearest filtering away from
+// texel borders, where float and double may round to different texels):
+//   * magnified (reference λ ≤ 0): every pixel within 2/255;
+//   * minified (λ > 0): at least 99 % of the pixels within 2/255. The rest differ because the
+//     GPU takes the LOD from differences across a 2×2 pixel quad (a finite difference one pixel
+//     wide, constant over the quad) and blends mip levels with 4-bit precision (lavapipe's
+//     mipmapPrecisionBits), while the reference uses the exact derivative at the pixel centre.
+// The filtering lesson compares each sampler setting with a 16×16 supersampled ground truth.
+#include "reference/cpu_reference.h"
+#include "reference/cpu_texture.h"
+#include "reference/image_compare.h"
+#include "lab_runner.h"
+#include "temp_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab3";
+const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
+const std::string kTextures = kScenes + "/textures";
+constexpr int kWidth = 320, kHeight = 180;
+
+// A scene file in test_output/lab3: `materials` and `objects` JSON, a camera, ambient 1 and no
+// lights unless `lights` says otherwise (then colour = emissive + albedo·A exactly).
+std::string write_scene(const std::string& name, const std::string& materials, const std::string& objects,
+                        const std::string& camera = R"({"position": [0, 1.6, 1.6], "target": [0, 0, 0]})",
+                        const std::string& lights = "[]", const std::string& ambient = "1.0") {
+    fs::create_directories(kOutDir);
+    const std::string file = kOutDir + "/" + name + ".json";
+    std::ofstream(file) << R"({"camera": )" << camera << R"(, "background": [0.1, 0.1, 0.1], "ambient": {"intensity": )"
+                        << ambient << R"(}, "lighting": {"nan_check": "on"}, "lights": )" << lights
+                        << R"(, "materials": )" << materials << R"(, "objects": )" << objects << "}";
+    return file;
+}
+
+// A 2×2 plane at the origin with material "m".
+std::string plane_scene(const std::string& name, const std::string& material, const std::string& lights = "[]") {
+    return write_scene(name, R"({"m": )" + material + "}", R"([{"mesh": "plane", "material": "m", "scale": [2, 1, 2]}])",
+                       R"({"position": [0, 1.6, 1.6], "target": [0, 0, 0]})", lights);
+}
+
+RunResult run(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight,
+              const std::string& extra = "") {
+    fs::create_directories(kOutDir);
+    const std::string png = kOutDir + "/" + name + ".png";
+    std::error_code ec;
+    fs::remove(png, ec);
+    return run_lab(LAB3_EXE,
+                   "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) + " --width " +
+                       std::to_string(w) + " --height " + std::to_string(h) + " " + extra,
+                   kOutDir + "/" + name + ".log");
+}
+
+// Renders with the lab; "" after a failed assertion.
+std::string render(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight) {
+    const RunResult r = run(scene, name, w, h);
+    EXPECT_EQ(r.exit_code, 0) << "lab3_textures failed on " << scene << ":\n" << r.log;
+    const std::string png = kOutDir + "/" + name + ".png";
+    return r.exit_code == 0 && fs::exists(png) ? png : "";
+}
+
+size_t magenta_pixels(const lab::Image8& image) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
+    return n;
+}
+
+struct Verdict {
+    size_t magnified = 0, magnified_bad = 0, minified = 0, minified_bad = 0;
+    int magnified_max = 0;
+};
+
+// Renders `scene_file` and checks it against the reference by the rules in the file comment.
+// `texel_edges`: nearest filtering, also mask pixels next to a texel border of the albedo map.
+Verdict expect_matches(const std::string& scene_file, const std::string& name, bool texel_edges = false) {
+    Verdict v;
+    const std::string png = render(scene_file, name);
+    if (png.empty()) return v;
+    const lab::Image8 actual = lab::read_png(png);
+    const lab::Scene scene = lab::load_scene(scene_file);
+    ref::RefImage reference = ref::render_reference(scene, kWidth, kHeight, ref::make_texture_shader(scene, kWidth, kHeight));
+    const auto lod = ref::make_lod_probe(scene, kWidth, kHeight);
+    if (texel_edges)  // fold the texel index into the ids: the edge mask then covers texel borders
+        for (size_t i = 0; i < reference.hits.size(); ++i) {
+            const ref::Hit& hit = reference.hits[i];
+            if (!hit.hit) continue;
+            const lab::MaterialDesc& m = scene.materials.at(hit.material);
+            const ref::RefTexture t = ref::load_texture(m.albedo_map, false);
+            const glm::dvec2 uv = hit.uv * glm::dvec2(m.uv_scale) + glm::dvec2(m.uv_offset);
+            const int tx = int(std::floor(uv.x * t.levels[0].width)), ty = int(std::floor(uv.y * t.levels[0].height));
+            reference.object_id[i] = (reference.object_id[i] * 7919 + tx * 131 + ty) & 0x3fffffff;
+        }
+    // Nearest mipmapping switches level where λ crosses n + ½: a designed discontinuity, masked like
+    // a silhouette (the GPU's quad LOD puts the switch a pixel earlier or later).
+    for (size_t i = 0; i < reference.hits.size(); ++i)
+        if (reference.hits[i].hit &&
+            scene.materials.at(reference.hits[i].material).sampler.mipmaps == lab::SamplerDesc::Mipmaps::Nearest)
+            reference.object_id[i] = (reference.object_id[i] * 31 + int(std::ceil(lod(reference.hits[i]) + 0.5))) & 0x3fffffff;
+    ref::CompareOptions options;
+    options.tolerance = 2;
+    options.grazing_cos = 0.05;
+    const std::vector<uint8_t> mask = ref::edge_mask(reference, options);
+    const lab::Image8 expected = ref::encode_srgb(reference);
+    EXPECT_EQ(magenta_pixels(actual), 0u) << "NaN/Inf (or the missing-image checkerboard) in " << png;
+    size_t covered = 0;
+    for (size_t p = 0; p < mask.size(); ++p) {
+        covered += reference.object_id[p] >= 0;
+        if (mask[p] || !reference.hits[p].hit) continue;
+        int diff = 0;
+        for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(actual.rgba[4 * p + c]) - int(expected.rgba[4 * p + c])));
+        if (lod(reference.hits[p]) <= 0.0) {
+            ++v.magnified;
+            v.magnified_bad += diff > 2;
+            v.magnified_max = std::max(v.magnified_max, diff);
+        } else {
+            ++v.minified;
+            v.minified_bad += diff > 2;
+        }
+    }
+    EXPECT_GT(covered, mask.size() / 10) << "test scene shows almost nothing";
+    EXPECT_EQ(v.magnified_bad, 0u) << name << ": magnified pixels beyond 2/255 (max " << v.magnified_max << ")";
+    EXPECT_LE(v.minified_bad, v.minified / 100) << name << ": minified pixels beyond 2/255";
+    std::printf("[ compare ] %s: magnified %zu px (max diff %d/255), minified %zu px (%.2f%% beyond 2/255)\n", name.c_str(),
+                v.magnified, v.magnified_max, v.minified, v.minified ? 100.0 * double(v.minified_bad) / double(v.minified) : 0.0);
+    if (::testing::Test::HasFailure()) ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png", options);
+    return v;
+}
+
+std::string tex(const std::string& file) { return kTextures + "/" + file; }
+const std::string kAnisoOff = R"("sampler": {"anisotropy": 1})";
+
+// --- every map ---------------------------------------------------------------------------
+
+TEST(Lab3Render, AlbedoMapMagnified) {
+    const Verdict v = expect_matches(plane_scene("albedo", R"({"albedo_map": "procedural:checker", )" + kAnisoOff + "}"), "albedo");
+    EXPECT_GT(v.magnified, 10000u);  // the 8×8 checker over most of the image: magnified everywhere
+}
+TEST(Lab3Render, AlbedoImageTimesColour) {
+    expect_matches(plane_scene("albedo_image", R"({"albedo": [0.5, 1, 0.8], "albedo_map": ")" + tex("wood.png") +
+                                                   R"(", "uv_scale": [0.7, 0.7], )" + kAnisoOff + "}"),
+                   "albedo_image");
+}
+TEST(Lab3Render, SpecularMap) {
+    expect_matches(plane_scene("specular", R"({"albedo": [0.2, 0.2, 0.2], "specular": [1, 1, 1], "shininess": 8,
+        "specular_map": "procedural:metal", "uv_scale": [0.4, 0.4], )" + kAnisoOff + "}",
+                               R"([{"type": "directional", "direction": [0, -1, -1], "intensity": 1}])"),
+                   "specular");
+}
+TEST(Lab3Render, EmissiveMap) {
+    expect_matches(plane_scene("emissive", R"({"albedo": [0.1, 0.1, 0.1], "emissive": [0.05, 0, 0], "emissive_map": "procedural:grid",
+        "emissive_strength": 2, "uv_scale": [0.15, 0.15], )" + kAnisoOff + "}"),
+                   "emissive");
+}
+TEST(Lab3Render, AllThreeMapsLit) {
+    expect_matches(plane_scene("all_maps", R"({"albedo_map": ")" + tex("tiles.png") + R"(", "specular": [0.8, 0.8, 0.8],
+        "specular_map": "procedural:metal", "emissive_map": "procedural:grid", "emissive_strength": 0.5, )" + kAnisoOff + "}",
+                               R"([{"type": "point", "position": [0.3, 0.8, 0.2], "intensity": 1.5}])"),
+                   "all_maps");
+}
+
+// --- wrap modes, uv scale / offset, filters ---------------------------------------------------
+
+class Lab3Wrap : public ::testing::TestWithParam<std::string> {};
+TEST_P(Lab3Wrap, MatchesReference) {
+    // The map 1.6 times across, starting at −0.3: every mode shows its treatment of the edges.
+    const std::string wrap = GetParam();
+    expect_matches(plane_scene("wrap_" + wrap, R"({"albedo_map": ")" + tex("wood.png") + R"(", "uv_scale": [1.6, 1.6],
+        "uv_offset": [-0.3, -0.3], "sampler": {"anisotropy": 1, "wrap": ")" + wrap + "\"}}"),
+                   "wrap_" + wrap);
+}
+INSTANTIATE_TEST_SUITE_P(AllWraps, Lab3Wrap, ::testing::Values("repeat", "clamp", "mirror"),
+                         [](const auto& info) { return info.param; });
+
+TEST(Lab3Render, NearestFilterWithUvScaleAndOffset) {
+    expect_matches(plane_scene("nearest", R"({"albedo_map": "procedural:checker", "uv_scale": [2.5, 1.5], "uv_offset": [0.3, -0.2],
+        "sampler": {"filter": "nearest", "mipmaps": "none", "anisotropy": 1, "wrap": "mirror"}})"),
+                   "nearest", true);
+}
+
+TEST(Lab3Render, DistortedSampling) {
+    expect_matches(plane_scene("distorted", R"({"albedo_map": ")" + tex("bricks.png") + R"(", "sampling": "distorted", )" +
+                                                kAnisoOff + "}"),
+                   "distorted");
+}
+TEST(Lab3Render, DistortedSamplingOwnNumbers) {
+    expect_matches(plane_scene("distorted_numbers", R"({"albedo_map": ")" + tex("bricks.png") + R"(", "sampling": "distorted",
+        "distortion": {"amplitude": [0.05, -0.04], "frequency": [6, 12], "position_frequency": [-1, 3], "scales": [1.5, 0.75],
+                       "weights": [0.5, 0.4]}, )" + kAnisoOff + "}"),
+                   "distorted_numbers");
+}
+
+// --- minified: a tiled floor at a grazing angle (trilinear, no anisotropy) -----------------------
+
+const std::string kFloorCamera = R"({"position": [0, 0.6, 3], "target": [0, 0, -2], "far": 100})";
+std::string floor_scene(const std::string& name, const std::string& sampler) {
+    return write_scene(name, R"({"floor": {"albedo_map": ")" + tex("tiles.png") + R"(", "uv_scale": [20, 20], "sampler": )" +
+                                 sampler + "}}",
+                       R"([{"mesh": "plane", "material": "floor", "scale": [40, 1, 40]}])", kFloorCamera);
+}
+
+TEST(Lab3Render, MinifiedFloorTrilinear) {
+    const Verdict v = expect_matches(floor_scene("floor_trilinear", R"({"anisotropy": 1})"), "floor_trilinear");
+    EXPECT_GT(v.minified, 10000u);
+}
+TEST(Lab3Render, MinifiedFloorNearestMipmaps) {
+    expect_matches(floor_scene("floor_nearest_mip", R"({"anisotropy": 1, "mipmaps": "nearest"})"), "floor_nearest_mip");
+}
+
+// --- models: .mtl maps ------------------------------------------------------------------------
+
+TEST(Lab3Render, MtlTexturePath) {
+    // A quad whose .mtl names map_Kd with Windows separators, in a sub-folder of the model's.
+    // The .mtl material gets the default sampler, anisotropy 16, and lavapipe's anisotropic filter
+    // differs from the isotropic reference even where the map is magnified. So: (1) the .mtl
+    // scene must render exactly like the same quad with an explicit material naming the same
+    // file (default sampler), and (2) that explicit scene with anisotropy 1 must match the reference.
+    fs::create_directories(kOutDir + "/mtl/maps");
+    fs::copy_file(tex("bricks.png"), kOutDir + "/mtl/maps/bricks.png", fs::copy_options::overwrite_existing);
+    std::ofstream(kOutDir + "/mtl/quad.mtl") << "newmtl brick\nKd 1 1 1\nmap_Kd maps\\bricks.png\n";
+    const std::string obj = "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nvt 0 0\nvt 0.25 0\nvt 0.25 0.25\nvt 0 0.25\nvn 0 1 0\n";
+    std::ofstream(kOutDir + "/mtl/quad.obj") << "mtllib quad.mtl\n" << obj << "usemtl brick\nf 1/1/1 2/2/1 3/3/1 4/4/1\n";
+    std::ofstream(kOutDir + "/mtl/plain.obj") << obj << "f 1/1/1 2/2/1 3/3/1 4/4/1\n";
+    const std::string camera = R"({"position": [0, 2.2, 0.8], "target": [0, 0, 0]})";
+    const std::string from_mtl = write_scene("mtl", "{}", R"([{"mesh": ")" + kOutDir + R"(/mtl/quad.obj"}])", camera);
+    const lab::Scene scene = lab::load_scene(from_mtl);
+    ASSERT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(fs::path(scene.materials.begin()->second.albedo_map), fs::path(kOutDir + "/mtl/maps/bricks.png"));
+    const auto explicit_scene = [&](const std::string& name, const std::string& sampler) {
+        return write_scene(name, R"({"brick": {"albedo": [1, 1, 1], "albedo_map": ")" + kOutDir + R"(/mtl/maps/bricks.png")" +
+                                     sampler + "}}",
+                           R"([{"mesh": ")" + kOutDir + R"(/mtl/plain.obj", "material": "brick"}])", camera);
+    };
+    const std::string a = render(from_mtl, "mtl"), b = render(explicit_scene("mtl_explicit", ""), "mtl_explicit");
+    ASSERT_FALSE(a.empty() || b.empty());
+    EXPECT_TRUE(read_text(a) == read_text(b)) << a << " differs from " << b;
+    const Verdict v = expect_matches(explicit_scene("mtl_explicit_aniso_off", ", " + kAnisoOff), "mtl_explicit_aniso_off");
+    EXPECT_GT(v.magnified, 5000u);
+}
+
+// --- lab 2's scene: lab 3 changes nothing where there are no maps --------------------------------
+
+TEST(Lab3Render, Lab2SceneUnchanged) {
+    const std::string file = kOutDir + "/lab2_scene.json";
+    fs::create_directories(kOutDir);
+    std::string text = read_text(kScenes + "/lab2_lighting.json");
+    text.replace(text.find("\"models/pawn.obj\""), 17, "\"" + kScenes + "/models/pawn.obj\"");
+    std::ofstream(file) << text;
+    const std::string png3 = render(file, "lab2_scene_lab3");
+    const RunResult r2 = run_lab(LAB2_EXE, "--scene " + quoted(file) + " --headless --validate --out " +
+                                               quoted(kOutDir + "/lab2_scene_lab2.png") + " --width 320 --height 180",
+                                 kOutDir + "/lab2_scene_lab2.log");
+    ASSERT_EQ(r2.exit_code, 0) << r2.log;
+    ASSERT_FALSE(png3.empty());
+    EXPECT_TRUE(read_text(png3) == read_text(kOutDir + "/lab2_scene_lab2.png")) << "lab 3 draws lab 2's scene differently";
+}
+
+// --- the default scene (anisotropy off, markers off) ------------------------------------------------
+
+// The default scene made absolute (paths), with `edit` applied to every material with maps.
+std::string default_scene_variant(const std::string& name, const std::function<void(json&)>& edit) {
+    json scene = json::parse(read_text(kScenes + "/lab3_textures.json"));
+    scene["lighting"]["markers"] = false;  // the reference does not draw markers
+    for (json& object : scene["objects"]) {
+        const std::string mesh = object["mesh"];
+        if (mesh.size() > 4 && mesh.substr(mesh.size() - 4) == ".obj") object["mesh"] = kScenes + "/" + mesh;
+    }
+    for (auto& [key, material] : scene["materials"].items())
+        for (const char* map : {"albedo_map", "specular_map", "emissive_map"})
+            if (material.contains(map)) {
+                const std::string value = material[map];
+                if (value.rfind("procedural:", 0) != 0) material[map] = kScenes + "/" + value;
+                edit(material);
+            }
+    const std::string file = kOutDir + "/" + name + ".json";
+    fs::create_directories(kOutDir);
+    std::ofstream(file) << scene.dump(1);
+    return file;
+}
+
+TEST(Lab3Render, DefaultSceneAnisotropyOff) {
+    expect_matches(default_scene_variant("default_aniso_off", [](json& m) { m["sampler"]["anisotropy"] = 1; }),
+                   "default_aniso_off");
+}
+
+}  // namespace
