@@ -38,7 +38,8 @@ bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, float
     ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Textures");
     ImGui::Text("%.2f ms/frame", frame_ms);
-    bool rebuild = ImGui::Checkbox("mip-level view (0 white, 1 red, 2 yellow, 3 green, 4 cyan, 5 blue)", &l.mip_view);
+    bool rebuild = ImGui::Checkbox("mip-level view", &l.mip_view);
+    ImGui::TextDisabled("level 0 white, 1 red, 2 yellow, 3 green, 4 cyan, 5 blue, 6+ magenta");
     for (const std::string& warning : warnings) ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1.0f), "%s", warning.c_str());
     for (size_t i = 0; i < l.materials.size(); ++i) {
         lab::MaterialDesc& m = l.materials[i];
