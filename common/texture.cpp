@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 
 namespace lab {
 namespace {
@@ -79,6 +81,8 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
     t.width = uint32_t(pixels.width);
     t.height = uint32_t(pixels.height);
     t.levels = mipmaps ? mip_level_count(t.width, t.height) : 1;
+    const char* forced = std::getenv("LAB_MIPMAPS");
+    if (forced && std::string(forced) == "cpu") source = MipSource::Cpu;
     const bool gpu_mips = t.levels > 1 && source == MipSource::Auto && can_blit_linear(vk);
 
     // The CPU fallback computes every level here; the GPU path uploads level 0 only.

@@ -34,7 +34,9 @@ uint32_t mip_level_count(uint32_t width, uint32_t height);
 // colour (an odd last row / column is averaged with itself), re-encoded to sRGB.
 Image8 downsample_srgb(const Image8& image);
 
-// Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain.
+// Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain. The
+// environment variable LAB_MIPMAPS=cpu forces the CPU fallback (so tests can run that path on a
+// device that has linear blits).
 Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto);
 
 // One VkSampler per distinct SamplerDesc. Anisotropy is clamped to the device limit (or off

@@ -230,6 +230,14 @@ TEST(Lab3Render, MinifiedFloorTrilinear) {
     const Verdict v = expect_matches(floor_scene("floor_trilinear", R"({"anisotropy": 1})"), "floor_trilinear");
     EXPECT_GT(v.minified, 10000u);
 }
+TEST(Lab3Render, MinifiedFloorCpuMipChain) {
+    // The same floor with the mip chain made by the CPU fallback (2×2 box in linear colour) instead
+    // of GPU blits: the upload path of every level, validation on, against the reference.
+    setenv("LAB_MIPMAPS", "cpu", 1);
+    const Verdict v = expect_matches(floor_scene("floor_cpu_mips", R"({"anisotropy": 1})"), "floor_cpu_mips");
+    unsetenv("LAB_MIPMAPS");
+    EXPECT_GT(v.minified, 10000u);
+}
 TEST(Lab3Render, MinifiedFloorNearestMipmaps) {
     expect_matches(floor_scene("floor_nearest_mip", R"({"anisotropy": 1, "mipmaps": "nearest"})"), "floor_nearest_mip");
 }

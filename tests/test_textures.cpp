@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -346,4 +347,29 @@ TEST(ReferenceSampling, LodAndTrilinear) {
     EXPECT_DOUBLE_EQ(ref::sample(q, s, {0.25, 0.25}, {0.75, 0}, {0, 0}).r, 0.5);
     s.mipmaps = lab::SamplerDesc::Mipmaps::None;  // level 0, bilinear at texel (0,0)'s far corner
     EXPECT_DOUBLE_EQ(ref::sample(q, s, {0.25, 0.25}, {0.75, 0}, {0, 0}).r, 1.0);
+}
+
+// --- the sampler cache (a real device, validation on) ---------------------------------------
+
+TEST(SamplerCache, IdenticalSettingsShareOneSampler) {
+    int messages = 0;
+    lab::ContextOptions options;
+    options.validate = true;
+    options.message_count = &messages;
+    lab::VulkanContext vk(options);
+    {
+        lab::SamplerCache cache(vk);
+        lab::SamplerDesc a, b, c;
+        c.wrap = lab::SamplerDesc::Wrap::Mirror;
+        const VkSampler sa = cache.get(a), sb = cache.get(b), sc = cache.get(c);
+        EXPECT_EQ(sa, sb);
+        EXPECT_NE(sa, sc);
+        EXPECT_EQ(cache.size(), 2u);
+        // Anisotropy never exceeds the device's limit (or 1 without the feature).
+        const float limit = vk.enabled_features().samplerAnisotropy ? vk.properties().limits.maxSamplerAnisotropy : 1.0f;
+        EXPECT_EQ(cache.effective_anisotropy(16), std::min(16.0f, limit));
+        EXPECT_EQ(cache.effective_anisotropy(1), 1.0f);
+        EXPECT_EQ(cache.warnings().size(), limit < 16.0f ? 1u : 0u);
+    }
+    EXPECT_EQ(messages, 0);
 }
