@@ -1,22 +1,10 @@
 #include "buffer.h"
 
 #include <cstring>
+#include <utility>
 
 namespace lab {
 
-namespace {
-// Memory for a buffer or an image, of the first type with the wanted properties.
-Handle<VkDeviceMemory> allocate_memory(const VulkanContext& vk, const VkMemoryRequirements& req,
-                                       VkMemoryPropertyFlags properties) {
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = vk.find_memory_type(req.memoryTypeBits, properties);
-    VkDeviceMemory memory;
-    VK_CHECK(vkAllocateMemory(vk.device(), &alloc, nullptr, &memory));
-    VkDevice device = vk.device();
-    return Handle<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-}
-}  // namespace
 
 Buffer::Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
     : size_(size) {
@@ -31,9 +19,30 @@ Buffer::Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags us
 
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    memory_ = allocate_memory(vk, req, memory);
-    VK_CHECK(vkBindBufferMemory(device, buffer, memory_, 0));
-    if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) VK_CHECK(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    memory_ = vk.allocator().allocate(req, memory, /*image=*/false);
+    VK_CHECK(vkBindBufferMemory(device, buffer, memory_.memory(), memory_.offset()));
+    mapped_ = memory_.mapped();  // host-visible blocks stay mapped
+}
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+    if (this != &other) {
+        Buffer old(std::move(*this));  // destroyed at the end of this scope: buffer, then memory
+        memory_ = std::move(other.memory_);
+        buffer_ = std::move(other.buffer_);
+        size_ = std::exchange(other.size_, 0);
+        mapped_ = std::exchange(other.mapped_, nullptr);
+    }
+    return *this;
+}
+
+Image& Image::operator=(Image&& other) noexcept {
+    if (this != &other) {
+        Image old(std::move(*this));  // destroyed at the end of this scope: view, image, memory
+        memory = std::move(other.memory);
+        image = std::move(other.image);
+        view = std::move(other.view);
+    }
+    return *this;
 }
 
 Buffer Buffer::host_visible(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage) {
@@ -47,6 +56,21 @@ Buffer Buffer::device_local(const VulkanContext& vk, const void* data, VkDeviceS
     vk.run_once([&](VkCommandBuffer cmd) {
         VkBufferCopy region{0, 0, size};
         vkCmdCopyBuffer(cmd, staging.get(), buffer.get(), 1, &region);
+        // The copy's writes must be available to whatever reads the buffer next (vertex input,
+        // index fetch, shaders): a fence wait on the host alone does not make them so.
+        VkBufferMemoryBarrier done{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+        done.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        done.dstAccessMask = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT |
+                             VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
+        done.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        done.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        done.buffer = buffer.get();
+        done.offset = 0;
+        done.size = VK_WHOLE_SIZE;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                             0, 0, nullptr, 1, &done, 0, nullptr);
     });
     return buffer;
 }
@@ -71,8 +95,8 @@ Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat forma
 
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device, image, &req);
-    result.memory = allocate_memory(vk, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VK_CHECK(vkBindImageMemory(device, image, result.memory, 0));
+    result.memory = vk.allocator().allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, /*image=*/true);
+    VK_CHECK(vkBindImageMemory(device, image, result.memory.memory(), result.memory.offset()));
 
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = image;

@@ -6,6 +6,7 @@
 //  - device-local buffers filled once through a staging copy (vertices, indices).
 #pragma once
 
+#include "memory.h"
 #include "vk_context.h"
 
 #include <cstddef>
@@ -15,6 +16,9 @@ namespace lab {
 class Buffer {
 public:
     Buffer() = default;
+    Buffer(Buffer&&) noexcept = default;
+    // Not defaulted: member-wise assignment would free the old memory before the old buffer.
+    Buffer& operator=(Buffer&& other) noexcept;
     // A host-visible, coherent, persistently mapped buffer.
     static Buffer host_visible(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage);
     // A device-local buffer holding `data` (uploaded through a temporary staging buffer).
@@ -28,17 +32,24 @@ public:
 private:
     Buffer(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory);
 
+    // Members are destroyed in reverse order: the buffer first, then the memory bound to it
+    // (a range of a larger block: see memory.h).
+    Allocation memory_;
     Handle<VkBuffer> buffer_;
-    Handle<VkDeviceMemory> memory_;
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
 };
 
 // An image with its memory and one view (render targets, textures).
+// Destroyed in reverse order: view, image, then the memory bound to the image.
 struct Image {
+    Allocation memory;
     Handle<VkImage> image;
-    Handle<VkDeviceMemory> memory;
     Handle<VkImageView> view;
+
+    Image() = default;
+    Image(Image&&) noexcept = default;
+    Image& operator=(Image&& other) noexcept;  // destroys the old image in the right order first
 };
 
 // `mip_levels` levels; the view covers all of them.

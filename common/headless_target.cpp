@@ -22,6 +22,7 @@ HeadlessTarget::~HeadlessTarget() { vkDeviceWaitIdle(vk_.device()); }
 bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     slots_.wait(slot_);
     slots_.reset_fence(slot_);
+    slots_.reset_commands(slot_);
     ++frames_begun_;
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;
@@ -56,6 +57,13 @@ Image8 HeadlessTarget::read_pixels() {
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {extent_.width, extent_.height, 1};
         vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.get(), 1, &region);
+        // The fence wait below says the copy has *finished*, not that its writes are visible to
+        // the host: the specification asks for this transfer-write -> host-read barrier too.
+        VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0,
+                             nullptr, 0, nullptr);
     });
     Image8 image;
     image.width = int(extent_.width);

@@ -3,6 +3,9 @@
 
 #include "vk_context.h"
 
+#include <array>
+#include <cstdint>
+
 struct GLFWwindow;
 
 namespace lab {
@@ -20,6 +23,10 @@ public:
     bool wants_keyboard() const;      // a text field has focus
 
 private:
+    const VulkanContext& vk_;
+    // ImGui's colours are sRGB-encoded; the swapchain is *_SRGB and encodes again on write. Each
+    // vertex colour channel goes through this table (sRGB byte -> linear byte) before drawing.
+    std::array<uint8_t, 256> srgb_to_linear_{};
     Handle<VkDescriptorPool> pool_;
 };
 

@@ -27,6 +27,20 @@ double percentile(std::vector<double> values, double p) {
     const size_t rank = size_t(std::max(0.0, std::ceil(p / 100.0 * double(values.size())) - 1.0));
     return values[std::min(rank, values.size() - 1)];
 }
+// The device's largest image side for a colour attachment. The command line allows up to 32768;
+// a larger image than the device can make is bad input like any other (one line, exit code 2).
+void check_image_size(const VulkanContext& vk, const Options& options) {
+    const VkPhysicalDeviceLimits& limits = vk.properties().limits;
+    const uint32_t max_width = std::min(limits.maxImageDimension2D, limits.maxFramebufferWidth);
+    const uint32_t max_height = std::min(limits.maxImageDimension2D, limits.maxFramebufferHeight);
+    const auto check = [&](const char* option, uint32_t value, uint32_t allowed) {
+        if (value > allowed)
+            throw CliError(std::string(option) + " " + std::to_string(value) + ": the device allows at most " +
+                           std::to_string(allowed) + " (" + vk.properties().deviceName + ")");
+    };
+    check("--width", options.width, max_width);
+    check("--height", options.height, max_height);
+}
 }  // namespace
 
 LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_messages)
@@ -39,7 +53,9 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
         context.window = window_->handle();
     }
     vk_ = std::make_unique<VulkanContext>(context);
+    check_image_size(*vk_, options);
     if (window_) {
+        window_->show();  // created hidden: bad input never flashes a window
         auto target = std::make_unique<WindowTarget>(*vk_, *window_);
         const uint32_t images = target->image_count();
         target_ = std::move(target);
@@ -49,6 +65,9 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
         headless_ = target.get();
         target_ = std::move(target);
     }
+    // Test-only: fail right after the Nth frame is submitted, as a lost surface or device would
+    // (tests/test_vulkan_correctness.cpp checks that the run still ends validation-clean).
+    if (const char* n = std::getenv("LAB_TEST_FAIL_AFTER_SUBMIT"); n && *n) fail_after_submit_ = std::atoi(n);
 }
 
 LabApp::~LabApp() {
@@ -89,11 +108,28 @@ void LabApp::poll_input() {
     have_cursor_ = true;
 }
 
+void LabApp::frame_submitted() {
+    if (++submitted_ == fail_after_submit_)
+        throw VulkanError("LAB_TEST_FAIL_AFTER_SUBMIT=" + std::to_string(fail_after_submit_) +
+                          ": injected failure right after submitting frame " + std::to_string(submitted_));
+}
+
 void LabApp::run(const Callbacks& callbacks) {
-    if (window_)
-        run_window(callbacks);
-    else
-        run_headless(callbacks);
+    // The lab's renderer is a local of its body, destroyed as soon as run() is left. Whichever
+    // way run() is left (the last frame, or an exception after a submit: a lost surface or
+    // device, a failed pipeline), the GPU must be done with every submitted frame first, or
+    // unwinding destroys pipelines, buffers and memory the GPU is still using.
+    try {
+        if (window_)
+            run_window(callbacks);
+        else
+            run_headless(callbacks);
+    } catch (...) {
+        // The original error is the one to report; a failing wait here (a lost device) has
+        // nothing left to wait for.
+        vkDeviceWaitIdle(vk_->device());
+        throw;
+    }
 }
 
 void LabApp::run_window(const Callbacks& cb) {
@@ -117,9 +153,10 @@ void LabApp::run_window(const Callbacks& cb) {
         cb.record(frame);
         ui_->render(frame.cmd);
         target_->end_frame();
+        frame_submitted();
         if (options_.frames > 0 && ++frame_count >= options_.frames) break;  // --frames N: screenshots, tests
     }
-    vkDeviceWaitIdle(vk_->device());
+    wait_idle();
     const double seconds = ms_since(start) / 1000.0;
     std::printf("%s: %d frames in %.1f s (%.1f ms/frame average)\n", info_.name.c_str(), frame_count, seconds,
                 frame_count ? 1000.0 * seconds / frame_count : 0.0);
@@ -144,6 +181,7 @@ void LabApp::run_headless(const Callbacks& cb) {
         target_->begin_frame(cb.background(), frame);
         cb.record(frame);
         target_->end_frame();
+        frame_submitted();
         if (benchmark && i > 0) {
             headless_->wait_for_frame(i - 1);  // the previous frame is done: one interval
             const auto done = Clock::now();
@@ -151,7 +189,7 @@ void LabApp::run_headless(const Callbacks& cb) {
             last_done = done;
         }
     }
-    vkDeviceWaitIdle(vk_->device());
+    wait_idle();
     const double total_ms = ms_since(start);
 
     if (benchmark) {

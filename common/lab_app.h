@@ -69,6 +69,7 @@ private:
     void poll_input();
     void run_window(const Callbacks& callbacks);
     void run_headless(const Callbacks& callbacks);
+    void frame_submitted();  // counts submits; the test hook throws after the Nth
 
     LabInfo info_;
     Options options_;
@@ -82,6 +83,8 @@ private:
     bool have_cursor_ = false;
     std::vector<int> keys_down_last_frame_;
     float average_frame_ms_ = 0.0f;
+    int fail_after_submit_ = 0;  // test hook LAB_TEST_FAIL_AFTER_SUBMIT=N (0: off)
+    int submitted_ = 0;          // frames submitted so far
 };
 
 int run_lab(int argc, char** argv, const LabInfo& info,

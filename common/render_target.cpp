@@ -81,18 +81,20 @@ Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pas
 
 FrameSlots::FrameSlots(const VulkanContext& vk) : vk_(vk) {
     VkDevice device = vk.device();
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = vk.queue_family();
-    VkCommandPool pool;
-    VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
-    pool_ = Handle<VkCommandPool>(pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
+    for (uint32_t slot = 0; slot < RenderTarget::kFramesInFlight; ++slot) {
+        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;  // re-recorded every frame
+        pool_info.queueFamilyIndex = vk.queue_family();
+        VkCommandPool pool;
+        VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
+        pools_[slot] = Handle<VkCommandPool>(pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
 
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = RenderTarget::kFramesInFlight;
-    VK_CHECK(vkAllocateCommandBuffers(device, &alloc, commands_.data()));  // freed with the pool
+        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = pool;
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &commands_[slot]));  // freed with the pool
+    }
 
     for (auto& fence : fences_) {
         VkFenceCreateInfo info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
@@ -113,9 +115,10 @@ void FrameSlots::reset_fence(uint32_t slot) const {
     VK_CHECK(vkResetFences(vk_.device(), 1, &fence));
 }
 
+void FrameSlots::reset_commands(uint32_t slot) const { VK_CHECK(vkResetCommandPool(vk_.device(), pools_[slot], 0)); }
+
 void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
                        const glm::vec3& clear_linear) {
-    VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));

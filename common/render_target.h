@@ -47,17 +47,20 @@ public:
     // Waits until the slot's previous submission has finished.
     void wait(uint32_t slot) const;
     void reset_fence(uint32_t slot) const;
+    // Resets the slot's command buffer by resetting its own pool (cheaper than resetting single
+    // command buffers, which needs a pool created with RESET_COMMAND_BUFFER_BIT). After wait(slot).
+    void reset_commands(uint32_t slot) const;
     VkCommandBuffer command_buffer(uint32_t slot) const { return commands_[slot]; }
     VkFence fence(uint32_t slot) const { return fences_[slot]; }
 
 private:
     const VulkanContext& vk_;
-    Handle<VkCommandPool> pool_;
+    std::array<Handle<VkCommandPool>, RenderTarget::kFramesInFlight> pools_;  // one per slot
     std::array<VkCommandBuffer, RenderTarget::kFramesInFlight> commands_{};
     std::array<Handle<VkFence>, RenderTarget::kFramesInFlight> fences_;
 };
 
-// Begins `cmd` and the render pass, clears, sets viewport and scissor to `extent`.
+// Begins `cmd` (already reset) and the render pass, clears, sets viewport and scissor to `extent`.
 void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
                        const glm::vec3& clear_linear);
 

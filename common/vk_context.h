@@ -6,12 +6,14 @@
 // --validate can fail on any of them.
 #pragma once
 
+#include "memory.h"
 #include "vk_check.h"
 #include "vk_handle.h"
 
 #include <vulkan/vulkan.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,14 +45,30 @@ public:
     const VkPhysicalDeviceFeatures& enabled_features() const { return enabled_features_; }
 
     uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags wanted) const;
+    // Device memory for buffers and images: ranges of a few large blocks (memory.h).
+    MemoryAllocator& allocator() const { return *allocator_; }
     VkFormat depth_format() const { return depth_format_; }
 
     // Records commands into a one-time command buffer, submits and waits.
     // For uploads and readbacks — never inside the frame loop.
     void run_once(const std::function<void(VkCommandBuffer)>& record) const;
 
-    // Validation messages (warnings and errors) seen so far.
+    // Validation messages (warnings and errors) seen so far, less the filtered ones
+    // (kFilteredMessages in vk_context.cpp: each with its reason; synchronization hazards never).
     int validation_messages() const { return validation_messages_; }
+
+    // While one is alive, Vulkan calls come from a library that allocates its own memory (the
+    // ImGui backend): only there are the best-practices allocation-size messages filtered.
+    class LibraryScope {
+    public:
+        explicit LibraryScope(const VulkanContext& vk) : vk_(vk) { ++vk_.library_depth_; }
+        ~LibraryScope() { --vk_.library_depth_; }
+        LibraryScope(const LibraryScope&) = delete;
+        LibraryScope& operator=(const LibraryScope&) = delete;
+
+    private:
+        const VulkanContext& vk_;
+    };
 
 private:
     static VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(
@@ -59,6 +77,7 @@ private:
     void create_instance(const ContextOptions& options);
     void pick_physical_device();
     void create_device();
+    void provoke_validation_messages();  // test hook LAB_TEST_VALIDATION_PROBE
     void release();
 
     VkInstance instance_ = VK_NULL_HANDLE;
@@ -69,12 +88,14 @@ private:
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
     VkCommandPool upload_pool_ = VK_NULL_HANDLE;
+    std::unique_ptr<MemoryAllocator> allocator_;  // given back before the device is destroyed
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     VkPhysicalDeviceFeatures enabled_features_{};
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     bool presenting_ = false;
     int validation_messages_ = 0;
+    mutable int library_depth_ = 0;  // LibraryScopes alive (the debug callback runs in the calling thread)
     int* external_count_ = nullptr;
 };
 

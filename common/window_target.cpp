@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 #include <utility>
 
 namespace lab {
@@ -27,7 +28,14 @@ VkSurfaceFormatKHR choose_surface_format(const VulkanContext& vk) {
         if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
             f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
             return f;
-    throw VulkanError("the window surface offers no 8-bit sRGB format");
+    // No UNORM fallback on purpose: the labs' fragment shaders write linear colour and leave the
+    // encoding to the *_SRGB attachment (as the headless PNG does); encoding in every lab's shader
+    // would put non-lesson code into each lab. Every desktop driver we know offers B8G8R8A8_SRGB.
+    std::string offered;
+    for (const auto& f : formats) offered += (offered.empty() ? "" : ", ") + std::to_string(int(f.format));
+    throw VulkanError("the window surface offers no 8-bit sRGB format (B8G8R8A8_SRGB or R8G8B8A8_SRGB with "
+                      "SRGB_NONLINEAR; offered VkFormat values: " + offered +
+                      "); the labs need one to show linear colour correctly — render with --headless instead");
 }
 }  // namespace
 
@@ -41,6 +49,7 @@ Window::Window(const std::string& title, uint32_t width, uint32_t height) {
         throw VulkanError("GLFW: no Vulkan loader found for windows (use --headless)");
     }
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);  // shown once the device has accepted its size
     window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
     if (!window_) {
         glfwTerminate();
@@ -60,6 +69,7 @@ Window::~Window() {
     glfwTerminate();
 }
 
+void Window::show() { glfwShowWindow(window_); }
 bool Window::should_close() const { return glfwWindowShouldClose(window_); }
 bool Window::take_resized() { return std::exchange(resized_, false); }
 float Window::take_scroll() { return std::exchange(scroll_, 0.0f); }
@@ -70,26 +80,41 @@ WindowTarget::WindowTarget(const VulkanContext& vk, Window& window)
     : vk_(vk), window_(window), surface_format_(choose_surface_format(vk)),
       render_pass_(make_render_pass(vk, surface_format_.format, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)), slots_(vk) {
     for (auto& s : image_available_) s = make_semaphore(vk.device());
-    create_swapchain();
+    stale_ = !create_swapchain();  // a window that starts minimized gets its swapchain later
 }
 
 WindowTarget::~WindowTarget() {
-    vkDeviceWaitIdle(vk_.device());
+    vkDeviceWaitIdle(vk_.device());  // nothing to report from a destructor; the run is over
     destroy_swapchain_images();
-    vkDestroySwapchainKHR(vk_.device(), swapchain_, nullptr);
+    if (swapchain_) vkDestroySwapchainKHR(vk_.device(), swapchain_, nullptr);
+    retired_.clear();
 }
 
-void WindowTarget::create_swapchain() {
+namespace {
+// OPAQUE when the surface supports it (the labs draw opaque pixels), else what it does support.
+VkCompositeAlphaFlagBitsKHR choose_composite_alpha(VkCompositeAlphaFlagsKHR supported) {
+    for (VkCompositeAlphaFlagBitsKHR mode : {VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
+                                             VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR,
+                                             VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR})
+        if (supported & mode) return mode;
+    throw VulkanError("the window surface supports no composite alpha mode");
+}
+}  // namespace
+
+bool WindowTarget::create_swapchain() {
     VkSurfaceCapabilitiesKHR caps;
     VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(vk_.physical_device(), vk_.surface(), &caps));
-    if (caps.currentExtent.width != UINT32_MAX) {
-        extent_ = caps.currentExtent;
-    } else {
+    VkExtent2D extent = caps.currentExtent;
+    if (extent.width == UINT32_MAX) {  // the surface takes the size of the swapchain: use the window's
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_.handle(), &w, &h);
-        extent_ = {std::clamp(uint32_t(w), caps.minImageExtent.width, caps.maxImageExtent.width),
-                   std::clamp(uint32_t(h), caps.minImageExtent.height, caps.maxImageExtent.height)};
+        extent = {std::clamp(uint32_t(w), caps.minImageExtent.width, caps.maxImageExtent.width),
+                  std::clamp(uint32_t(h), caps.minImageExtent.height, caps.maxImageExtent.height)};
     }
+    // Minimized (or mid-resize to nothing): a 0×0 swapchain or depth image is invalid. Keep the
+    // old swapchain (if any) and try again on a later frame.
+    if (extent.width == 0 || extent.height == 0) return false;
+
     uint32_t image_count = caps.minImageCount + 1;
     if (caps.maxImageCount > 0) image_count = std::min(image_count, caps.maxImageCount);
 
@@ -99,24 +124,40 @@ void WindowTarget::create_swapchain() {
     info.minImageCount = image_count;
     info.imageFormat = surface_format_.format;
     info.imageColorSpace = surface_format_.colorSpace;
-    info.imageExtent = extent_;
+    info.imageExtent = extent;
     info.imageArrayLayers = 1;
     info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
-    info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
+    info.compositeAlpha = choose_composite_alpha(caps.supportedCompositeAlpha);
     info.presentMode = VK_PRESENT_MODE_FIFO_KHR;  // vsync; the only mode every driver must offer
     info.clipped = VK_TRUE;
     info.oldSwapchain = old;
-    VK_CHECK(vkCreateSwapchainKHR(vk_.device(), &info, nullptr, &swapchain_));
-    if (old) vkDestroySwapchainKHR(vk_.device(), old, nullptr);
+    VkSwapchainKHR created = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSwapchainKHR(vk_.device(), &info, nullptr, &created));
+
+    // The old swapchain and its render-finished semaphores may still be held by a presentation
+    // that vkDeviceWaitIdle does not cover (VK_EXT_swapchain_maintenance1, which could tell, is not
+    // offered by Debian 12's drivers): destroy them only after kFramesInFlight more presents.
+    VkDevice device = vk_.device();
+    if (old) {
+        Retired retired;
+        retired.swapchain = Handle<VkSwapchainKHR>(
+            old, [device](VkSwapchainKHR s) { vkDestroySwapchainKHR(device, s, nullptr); });
+        retired.semaphores = std::move(render_finished_);
+        retired.destroy_after = presents_ + kFramesInFlight;
+        retired_.push_back(std::move(retired));
+    }
+    render_finished_.clear();
+    destroy_swapchain_images();
+    swapchain_ = created;
+    extent_ = extent;
 
     uint32_t count = 0;
-    VK_CHECK(vkGetSwapchainImagesKHR(vk_.device(), swapchain_, &count, nullptr));
+    VK_CHECK(vkGetSwapchainImagesKHR(device, swapchain_, &count, nullptr));
     images_.resize(count);
-    VK_CHECK(vkGetSwapchainImagesKHR(vk_.device(), swapchain_, &count, images_.data()));
+    VK_CHECK(vkGetSwapchainImagesKHR(device, swapchain_, &count, images_.data()));
 
-    VkDevice device = vk_.device();
     depth_ = create_image_2d(vk_, extent_, vk_.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                              VK_IMAGE_ASPECT_DEPTH_BIT);
     for (VkImage image : images_) {
@@ -132,6 +173,7 @@ void WindowTarget::create_swapchain() {
         framebuffers_.push_back(make_framebuffer(vk_, render_pass_, view, depth_.view, extent_));
         render_finished_.push_back(make_semaphore(device));
     }
+    return true;
 }
 
 void WindowTarget::destroy_swapchain_images() {
@@ -141,31 +183,60 @@ void WindowTarget::destroy_swapchain_images() {
     depth_ = Image{};
 }
 
-void WindowTarget::recreate_swapchain() {
-    vkDeviceWaitIdle(vk_.device());
-    destroy_swapchain_images();
-    create_swapchain();
+bool WindowTarget::recreate_swapchain() {
+    // Every path that makes a swapchain goes through create_swapchain(), which refuses 0×0.
+    VK_CHECK(vkDeviceWaitIdle(vk_.device()));  // framebuffers and depth are in use by in-flight frames
+    if (!create_swapchain()) return false;
+    stale_ = false;
+    return true;
 }
 
+void WindowTarget::mark_stale(bool suboptimal) {
+    // A surface can stay suboptimal (e.g. a rotated display we do not pre-rotate for): recreate once
+    // per change, not every frame. A resize or an out-of-date swapchain is a new change.
+    if (suboptimal && suboptimal_handled_) return;
+    suboptimal_handled_ = suboptimal;
+    stale_ = true;
+}
+
+void WindowTarget::release_retired() {
+    while (!retired_.empty() && retired_.front().destroy_after <= presents_) retired_.pop_front();
+}
+
+namespace {
+// A failed acquire or present other than out-of-date/suboptimal ends the run, saying what happened.
+[[noreturn]] void throw_surface_error(const char* what, VkResult result) {
+    std::string message = std::string(what) + " failed with " + vk_result_name(result);
+    if (result == VK_ERROR_SURFACE_LOST_KHR) message += ": the window's surface is gone (window closed or display lost)";
+    if (result == VK_ERROR_DEVICE_LOST) message += ": the GPU was lost (driver reset or hang)";
+    throw VulkanError(message);
+}
+}  // namespace
+
 bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
+    if (window_.take_resized()) mark_stale(false);
     // A minimized window has a 0×0 framebuffer: draw nothing, wait for events.
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_.handle(), &w, &h);
-    if (w == 0 || h == 0) {
+    if (w == 0 || h == 0 || (stale_ && !recreate_swapchain())) {
         glfwWaitEventsTimeout(0.1);
         return false;
     }
-    if (window_.take_resized()) recreate_swapchain();
 
     slots_.wait(slot_);
-    VkResult acquired = vkAcquireNextImageKHR(vk_.device(), swapchain_, UINT64_MAX, image_available_[slot_],
-                                              VK_NULL_HANDLE, &image_index_);
-    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
-        recreate_swapchain();
+    release_retired();
+    const VkResult acquired = vkAcquireNextImageKHR(vk_.device(), swapchain_, UINT64_MAX, image_available_[slot_],
+                                                    VK_NULL_HANDLE, &image_index_);
+    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {  // no image, nothing signalled: recreate and try again
+        mark_stale(false);
         return false;
     }
-    if (acquired != VK_SUBOPTIMAL_KHR) VK_CHECK(acquired);
+    if (acquired == VK_SUBOPTIMAL_KHR)
+        mark_stale(true);  // the image is ours and its semaphore will signal: draw it, recreate next frame
+    else if (acquired != VK_SUCCESS)
+        throw_surface_error("vkAcquireNextImageKHR", acquired);
     slots_.reset_fence(slot_);  // only once we know we will submit, or the next wait would hang
+    slots_.reset_commands(slot_);
 
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;
@@ -198,12 +269,18 @@ void WindowTarget::end_frame() {
     present.swapchainCount = 1;
     present.pSwapchains = &swapchain_;
     present.pImageIndices = &image_index_;
-    VkResult presented = vkQueuePresentKHR(vk_.queue(), &present);
-    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || window_.take_resized())
-        recreate_swapchain();
-    else
-        VK_CHECK(presented);
+    const VkResult presented = vkQueuePresentKHR(vk_.queue(), &present);
+    ++presents_;
     slot_ = (slot_ + 1) % kFramesInFlight;
+    // Errors first, so that a pending resize never hides a lost surface; the swapchain itself is
+    // recreated at the start of the next frame.
+    if (presented == VK_ERROR_OUT_OF_DATE_KHR)
+        mark_stale(false);
+    else if (presented == VK_SUBOPTIMAL_KHR)
+        mark_stale(true);
+    else if (presented != VK_SUCCESS)
+        throw_surface_error("vkQueuePresentKHR", presented);
+    if (window_.take_resized()) mark_stale(false);
 }
 
 }  // namespace lab

@@ -3,6 +3,7 @@
 
 #include "render_target.h"
 
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@ public:
     Window& operator=(const Window&) = delete;
 
     GLFWwindow* handle() const { return window_; }
+    void show();  // the window is created hidden (LabApp checks the size against the device first)
     bool should_close() const;
     // Set by the resize callback; cleared by whoever recreates the swapchain.
     bool take_resized();
@@ -43,9 +45,11 @@ public:
     uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
 
 private:
-    void create_swapchain();
+    bool create_swapchain();  // false (and nothing changed) while the surface is 0×0
     void destroy_swapchain_images();
-    void recreate_swapchain();
+    bool recreate_swapchain();
+    void mark_stale(bool suboptimal);
+    void release_retired();
 
     const VulkanContext& vk_;
     Window& window_;
@@ -66,6 +70,18 @@ private:
     std::array<Handle<VkSemaphore>, kFramesInFlight> image_available_;
     uint32_t slot_ = 0;
     uint32_t image_index_ = 0;
+    // Recreation: `stale_` asks for a new swapchain at the next begin_frame(); a surface that
+    // stays suboptimal is recreated for once per change (`suboptimal_handled_`).
+    bool stale_ = false;
+    bool suboptimal_handled_ = false;
+    // Old swapchains and their render-finished semaphores, kept until kFramesInFlight more presents.
+    struct Retired {
+        Handle<VkSwapchainKHR> swapchain;
+        std::vector<Handle<VkSemaphore>> semaphores;
+        uint64_t destroy_after = 0;  // value of presents_
+    };
+    std::deque<Retired> retired_;
+    uint64_t presents_ = 0;
 };
 
 }  // namespace lab

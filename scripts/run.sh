@@ -1,22 +1,47 @@
 #!/usr/bin/env bash
-# run.sh — set everything up, then run the newest lab with its default scene:
-# in a window when a display is present, otherwise headless (prints the PNG's path).
-# Extra arguments go to the lab, e.g.  bash scripts/run.sh --scene scenes/lab1_camera.json
+# run.sh — set everything up, then run one lab with its own default scene
+# (scenes/<lab>.json): in a window when a display is present, otherwise headless
+# (writes out/<lab>.png and prints its path).
+#
+#   bash scripts/run.sh                     # the newest lab
+#   bash scripts/run.sh lab1                # lab 1 (also: 1, lab1_camera)
+#   bash scripts/run.sh 2 --scene scenes/lab2_one_light.json --validate
+#
+# Everything after the lab goes to the lab unchanged (see `--help` of any lab).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$root/scripts/setup.sh"
 build="${LAB_BUILD_DIR:-$root/build}"
 
+# The labs of this checkout, in order: folders lab<N>_<name>/ with a CMakeLists.txt.
+mapfile -t labs < <(cd "$root" && for d in lab[0-9]*_*; do [ -f "$d/CMakeLists.txt" ] && echo "$d"; done | sort -V)
+
+# The first argument names a lab when it looks like one: 2, lab2, lab2_lighting.
 lab=""
-for candidate in lab1_camera lab2_lighting lab3_textures lab4_shadows; do
-  [ -x "$build/$candidate/$candidate" ] && lab="$candidate"
-done
-[ -n "$lab" ] || { echo "run: no lab was built in $build" >&2; exit 1; }
+if (($#)) && [[ "$1" =~ ^(lab)?[0-9]+(_[A-Za-z0-9_]+)?$ ]]; then
+  want="$1"
+  shift
+  [[ "$want" == lab* ]] || want="lab$want"
+  for candidate in "${labs[@]}"; do
+    if [ "$candidate" = "$want" ] || [ "${candidate%%_*}" = "$want" ]; then lab="$candidate"; fi
+  done
+  if [ -z "$lab" ]; then
+    echo "run: no lab '$want' here; the labs are: ${labs[*]}" >&2
+    exit 2
+  fi
+else
+  lab="${labs[${#labs[@]} - 1]}"  # the newest
+fi
+
+bash "$root/scripts/setup.sh"
+exe="$build/$lab/$lab"
+[ -x "$exe" ] || { echo "run: $exe was not built" >&2; exit 1; }
 
 if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
-  exec "$build/$lab/$lab" "$@"
+  exec "$exe" "$@"
 else
+  extra=(--headless --out "$root/out/$lab.png")
+  for arg in "$@"; do [ "$arg" = --out ] && extra=(--headless); done  # the caller names the PNG
   echo "run: no display found, rendering $lab headless"
   mkdir -p "$root/out"
-  exec "$build/$lab/$lab" --headless --out "$root/out/$lab.png" "$@"
+  exec "$exe" "${extra[@]}" "$@"
 fi

@@ -11,11 +11,13 @@ build="${LAB_BUILD_DIR:-$root/build}"
 
 packages=(
   build-essential cmake pkg-config
+  patch                        # make_diffs.sh --check applies the instructor diffs
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglfw3-dev libglm-dev libstb-dev libimgui-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev
   assimp-testmodels            # real-world OBJ files for the mesh loader tests
   xvfb xauth                   # window tests run under a virtual X server
+  python3-matplotlib python3-numpy  # bench/tradeoff.py: time-against-error plots
 )
 
 missing=()

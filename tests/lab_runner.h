@@ -28,10 +28,21 @@ struct RunResult {
     std::string log;     // stdout + stderr
 };
 
-// Runs `exe` with `args` (already quoted), stdout + stderr into `log_path`.
+// Where a test writes its pictures and logs: build/test_output/<sub>, or $LAB_TEST_OUTPUT/<sub>
+// (the exercises' grader, scripts/exercise.sh --prove, keeps its runs apart this way).
+inline std::string test_output_dir(const std::string& sub) {
+    const char* dir = std::getenv("LAB_TEST_OUTPUT");
+    return (dir && *dir ? std::string(dir) : std::string(LAB_BINARY_DIR) + "/test_output") + "/" + sub;
+}
+
+// Runs `exe` with `args` (already quoted), stdout + stderr into `log_path`. With $LAB_EXE_DIR set
+// the lab binary of the same name in that folder runs instead (the grader's build of a stubbed lab).
 inline RunResult run_lab(const std::string& exe, const std::string& args, const std::string& log_path) {
     std::filesystem::create_directories(std::filesystem::path(log_path).parent_path());
-    const std::string command = quoted(exe) + " " + args + " > " + quoted(log_path) + " 2>&1";
+    const char* exe_dir = std::getenv("LAB_EXE_DIR");
+    const std::string program =
+        exe_dir && *exe_dir ? std::string(exe_dir) + "/" + std::filesystem::path(exe).filename().string() : exe;
+    const std::string command = quoted(program) + " " + args + " > " + quoted(log_path) + " 2>&1";
     const int status = std::system(command.c_str());
     RunResult r;
     if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);

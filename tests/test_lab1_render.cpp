@@ -28,7 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab1";
+const std::string kOutDir = test_output_dir("lab1");
 const std::string kTestScenes = std::string(LAB_SOURCE_DIR) + "/tests/scenes";
 const std::string kDefaultScene = std::string(LAB_SOURCE_DIR) + "/scenes/lab1_camera.json";
 

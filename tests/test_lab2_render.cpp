@@ -36,7 +36,7 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab2";
+const std::string kOutDir = test_output_dir("lab2");
 const std::string kTestScenes = std::string(LAB_SOURCE_DIR) + "/tests/scenes";
 const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
 constexpr int kWidth = 320, kHeight = 180;

@@ -481,8 +481,30 @@ glm::dvec3 shade_unlit(const lab::Scene& scene, const Hit& hit) {
 
 RefImage render_reference(const lab::Scene& scene, int width, int height, const ShadeFn& shade) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("render_reference: empty image");
-    const Camera camera = make_camera(scene.camera);
     const SceneGeometry geometry(scene);
+    const TraceFn trace = [&geometry](const Ray& ray, double t_min, double t_max, Hit* hit) {
+        return geometry.trace(ray, t_min, t_max, hit);
+    };
+    return render_with(scene, width, height, shade, trace, 1);
+}
+
+namespace {
+// A fixed pseudo-random number in [0, 1) for (pixel, cell, axis): the jitter of a
+// stratified sample. Deterministic, so a reference render is reproducible.
+double jitter(uint64_t key) {
+    key += 0x9E3779B97F4A7C15ull;  // splitmix64
+    key = (key ^ (key >> 30)) * 0xBF58476D1CE4E5B9ull;
+    key = (key ^ (key >> 27)) * 0x94D049BB133111EBull;
+    key ^= key >> 31;
+    return double(key >> 11) * (1.0 / 9007199254740992.0);  // 53 bits
+}
+}  // namespace
+
+RefImage render_with(const lab::Scene& scene, int width, int height, const ShadeFn& shade, const TraceFn& trace,
+                     int supersample) {
+    if (width <= 0 || height <= 0) throw std::invalid_argument("render_reference: empty image");
+    if (supersample < 1) throw std::invalid_argument("render_reference: supersample must be >= 1");
+    const Camera camera = make_camera(scene.camera);
 
     RefImage image;
     image.width = width;
@@ -493,6 +515,19 @@ RefImage render_reference(const lab::Scene& scene, int width, int height, const 
     image.triangle_id.assign(n, -1);
     image.hits.assign(n, Hit{});
 
+    const int ss = supersample, middle = supersample / 2;
+    // One sample at (px, py): its hit (with material and view direction) and colour.
+    auto sample = [&](double px, double py, Hit* hit) {
+        const Ray ray = primary_ray(camera, width, height, px, py);
+        if (trace(ray, camera.near_plane, camera.far_plane, hit)) {
+            hit->material = scene.objects[hit->object_id].material;
+            hit->view_dir = glm::normalize(camera.eye - hit->position);
+        } else {
+            *hit = Hit{};
+            hit->view_dir = -glm::normalize(ray.dir);
+        }
+        return shade(scene, *hit);
+    };
     // Rows are independent: trace and shade them on a few threads (row r goes
     // to thread r mod T, so the result does not depend on the thread count).
     // `shade` is therefore called concurrently and must not modify shared state.
@@ -500,18 +535,26 @@ RefImage render_reference(const lab::Scene& scene, int width, int height, const 
         for (int y = first_row; y < height; y += step) {
             for (int x = 0; x < width; ++x) {
                 const size_t i = static_cast<size_t>(y) * width + x;
-                const Ray ray = primary_ray(camera, width, height, x + 0.5, y + 0.5);
                 Hit& hit = image.hits[i];
-                if (geometry.trace(ray, camera.near_plane, camera.far_plane, &hit)) {
-                    hit.material = scene.objects[hit.object_id].material;
-                    hit.view_dir = glm::normalize(camera.eye - hit.position);
+                if (ss == 1) {
+                    image.linear[i] = sample(x + 0.5, y + 0.5, &hit);
+                } else {
+                    glm::dvec3 sum(0.0);
+                    for (int cy = 0; cy < ss; ++cy) {
+                        for (int cx = 0; cx < ss; ++cx) {
+                            const uint64_t key = ((uint64_t(i) * ss + cy) * ss + cx) * 2;
+                            const double px = x + (cx + jitter(key)) / ss, py = y + (cy + jitter(key + 1)) / ss;
+                            Hit h;
+                            sum += sample(px, py, &h);
+                            if (cx == middle && cy == middle) hit = h;
+                        }
+                    }
+                    image.linear[i] = sum / double(ss * ss);
+                }
+                if (hit.hit) {
                     image.object_id[i] = hit.object_id;
                     image.triangle_id[i] = hit.triangle_id;
-                } else {
-                    hit = Hit{};
-                    hit.view_dir = -glm::normalize(ray.dir);
                 }
-                image.linear[i] = shade(scene, hit);
             }
         }
     };

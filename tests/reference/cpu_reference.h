@@ -125,6 +125,11 @@ struct Hit {
     glm::dvec2 uv{0.0};           // interpolated texture coordinates
     std::string material;         // Scene::objects[object_id].material
     glm::dvec3 view_dir{0.0};     // normalised direction from the hit point towards the eye
+    // Set by the ideal tracer (reference/ideal.h) for an exact curved surface: then `normal`
+    // and `geometric_normal` are the surface's exact normal, `tangent` its unit world tangent
+    // along +u, and triangle_id names the part (0 side, 1 top cap, 2 bottom cap), not a triangle.
+    bool analytic = false;
+    glm::dvec3 tangent{0.0};
 };
 
 // Turns a hit (or a miss: hit.hit == false) into a linear RGB colour.
@@ -168,6 +173,18 @@ private:
 // [near, far], shaded by `shade`.
 RefImage render_reference(const lab::Scene& scene, int width, int height,
                           const ShadeFn& shade = shade_unlit);
+
+// Finds the visible surface along a ray: nearest front-facing hit with t in [t_min, t_max]
+// (SceneGeometry::trace, or the ideal shapes of reference/ideal.h).
+using TraceFn = std::function<bool(const Ray& ray, double t_min, double t_max, Hit* hit)>;
+
+// render_reference() with any tracer and `supersample`² samples per pixel: the pixel is
+// split into N × N equal cells, one sample at a fixed pseudo-random place in each
+// (stratified), and the pixel gets the mean of their linear colours (a box filter: the
+// pixel's area integral). N = 1 is the single ray through the pixel centre. The ids and
+// the hit record of a pixel are those of its middle cell's sample.
+RefImage render_with(const lab::Scene& scene, int width, int height, const ShadeFn& shade, const TraceFn& trace,
+                     int supersample = 1);
 
 // The standard sRGB transfer curve (linear → encoded), for one channel in [0, 1].
 double srgb_encode(double linear);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -172,6 +173,187 @@ CompareResult compare_and_report(const lab::Image8& actual, const RefImage& refe
         }
     }
     return r;
+}
+
+// ---------------------------------------------------------------------------
+// Error figures
+// ---------------------------------------------------------------------------
+
+glm::dvec3 srgb8_to_lab(const uint8_t rgb[3]) {
+    const double r = srgb_decode(rgb[0] / 255.0), g = srgb_decode(rgb[1] / 255.0), b = srgb_decode(rgb[2] / 255.0);
+    // Linear sRGB → XYZ (IEC 61966-2-1, D65), divided by the white point.
+    const double X = (0.4124564 * r + 0.3575761 * g + 0.1804375 * b) / 0.95047;
+    const double Y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b;
+    const double Z = (0.0193339 * r + 0.1191920 * g + 0.9503041 * b) / 1.08883;
+    auto f = [](double t) {
+        const double e = 216.0 / 24389.0, k = 24389.0 / 27.0;
+        return t > e ? std::cbrt(t) : (k * t + 16.0) / 116.0;
+    };
+    const double fx = f(X), fy = f(Y), fz = f(Z);
+    return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
+}
+
+double ciede2000(const glm::dvec3& lab1, const glm::dvec3& lab2) {
+    constexpr double kPi = 3.14159265358979323846;
+    const double deg = kPi / 180.0;
+    const double L1 = lab1.x, a1 = lab1.y, b1 = lab1.z, L2 = lab2.x, a2 = lab2.y, b2 = lab2.z;
+    const double C1 = std::hypot(a1, b1), C2 = std::hypot(a2, b2);
+    const double Cm = 0.5 * (C1 + C2);
+    const double Cm7 = std::pow(Cm, 7.0);
+    const double G = 0.5 * (1.0 - std::sqrt(Cm7 / (Cm7 + std::pow(25.0, 7.0))));
+    const double a1p = (1.0 + G) * a1, a2p = (1.0 + G) * a2;
+    const double C1p = std::hypot(a1p, b1), C2p = std::hypot(a2p, b2);
+    auto hue = [&](double b, double ap) {
+        if (b == 0.0 && ap == 0.0) return 0.0;
+        double h = std::atan2(b, ap) / deg;
+        return h < 0.0 ? h + 360.0 : h;
+    };
+    const double h1p = hue(b1, a1p), h2p = hue(b2, a2p);
+    const double dLp = L2 - L1, dCp = C2p - C1p;
+    double dhp = 0.0;
+    if (C1p * C2p != 0.0) {
+        dhp = h2p - h1p;
+        if (dhp > 180.0) dhp -= 360.0;
+        else if (dhp < -180.0) dhp += 360.0;
+    }
+    const double dHp = 2.0 * std::sqrt(C1p * C2p) * std::sin(0.5 * dhp * deg);
+    const double Lpm = 0.5 * (L1 + L2), Cpm = 0.5 * (C1p + C2p);
+    double hpm = h1p + h2p;
+    if (C1p * C2p != 0.0) {
+        if (std::abs(h1p - h2p) <= 180.0) hpm *= 0.5;
+        else hpm = (h1p + h2p < 360.0) ? 0.5 * (h1p + h2p + 360.0) : 0.5 * (h1p + h2p - 360.0);
+    }
+    const double T = 1.0 - 0.17 * std::cos((hpm - 30.0) * deg) + 0.24 * std::cos(2.0 * hpm * deg) +
+                     0.32 * std::cos((3.0 * hpm + 6.0) * deg) - 0.20 * std::cos((4.0 * hpm - 63.0) * deg);
+    const double dTheta = 30.0 * std::exp(-std::pow((hpm - 275.0) / 25.0, 2.0));
+    const double Cpm7 = std::pow(Cpm, 7.0);
+    const double RC = 2.0 * std::sqrt(Cpm7 / (Cpm7 + std::pow(25.0, 7.0)));
+    const double SL = 1.0 + 0.015 * (Lpm - 50.0) * (Lpm - 50.0) / std::sqrt(20.0 + (Lpm - 50.0) * (Lpm - 50.0));
+    const double SC = 1.0 + 0.045 * Cpm, SH = 1.0 + 0.015 * Cpm * T;
+    const double RT = -std::sin(2.0 * dTheta * deg) * RC;
+    const double l = dLp / SL, c = dCp / SC, h = dHp / SH;
+    return std::sqrt(l * l + c * c + h * h + RT * c * h);
+}
+
+std::vector<uint8_t> colour_edge_mask(const lab::Image8& image, int threshold) {
+    const int w = image.width, h = image.height;
+    std::vector<uint8_t> mask(static_cast<size_t>(w) * h, 0);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const uint8_t* p = &image.rgba[(static_cast<size_t>(y) * w + x) * 4];
+            bool edge = false;
+            for (int dy = -1; dy <= 1 && !edge; ++dy) {
+                for (int dx = -1; dx <= 1 && !edge; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                    const uint8_t* q = &image.rgba[(static_cast<size_t>(ny) * w + nx) * 4];
+                    for (int ch = 0; ch < 3; ++ch)
+                        if (std::abs(int(p[ch]) - int(q[ch])) > threshold) edge = true;
+                }
+            }
+            mask[static_cast<size_t>(y) * w + x] = edge ? 1 : 0;
+        }
+    }
+    return mask;
+}
+
+namespace {
+int pixel_diff(const uint8_t* a, const uint8_t* b) {
+    int d = 0;
+    for (int ch = 0; ch < 3; ++ch) d = std::max(d, std::abs(int(a[ch]) - int(b[ch])));
+    return d;
+}
+// Nearest-rank percentile of a vector (reordered in place).
+double percentile(std::vector<double>& v, double p) {
+    if (v.empty()) return 0.0;
+    size_t rank = static_cast<size_t>(std::ceil(p * double(v.size())));
+    rank = std::clamp<size_t>(rank, 1, v.size()) - 1;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(rank), v.end());
+    return v[rank];
+}
+}  // namespace
+
+std::string ErrorStats::line() const {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "mean_abs=%.4f p99_abs=%.1f max_abs=%d over_2=%.4f%% mean_de2000=%.4f p99_de2000=%.3f "
+                  "pixels=%zu masked=%zu",
+                  mean_abs, p99_abs, max_abs, 100.0 * share_over_2, mean_de, p99_de, pixels, masked);
+    return buf;
+}
+
+ErrorStats error_stats(const lab::Image8& a, const lab::Image8& b, const std::vector<uint8_t>& mask) {
+    if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+        throw std::invalid_argument("images differ in size (" + std::to_string(a.width) + "x" +
+                                    std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                                    std::to_string(b.height) + ")");
+    const size_t total = static_cast<size_t>(a.width) * a.height;
+    if (!mask.empty() && mask.size() != total) throw std::invalid_argument("mask size differs from the image");
+    ErrorStats s;
+    s.width = a.width;
+    s.height = a.height;
+    std::vector<double> abs_err, de;
+    abs_err.reserve(total);
+    de.reserve(total);
+    double sum_abs = 0.0, sum_de = 0.0;
+    size_t over = 0;
+    for (size_t i = 0; i < total; ++i) {
+        if (!mask.empty() && mask[i]) {
+            ++s.masked;
+            continue;
+        }
+        const uint8_t* p = &a.rgba[4 * i];
+        const uint8_t* q = &b.rgba[4 * i];
+        const int d = pixel_diff(p, q);
+        s.max_abs = std::max(s.max_abs, d);
+        over += d > 2;
+        sum_abs += d;
+        abs_err.push_back(d);
+        const double e = d == 0 ? 0.0 : ciede2000(srgb8_to_lab(p), srgb8_to_lab(q));
+        sum_de += e;
+        de.push_back(e);
+    }
+    s.pixels = abs_err.size();
+    if (s.pixels > 0) {
+        s.mean_abs = sum_abs / double(s.pixels);
+        s.mean_de = sum_de / double(s.pixels);
+        s.share_over_2 = double(over) / double(s.pixels);
+        s.p99_abs = percentile(abs_err, 0.99);
+        s.p99_de = percentile(de, 0.99);
+    }
+    return s;
+}
+
+lab::Image8 error_heatmap(const lab::Image8& a, const lab::Image8& b, const std::vector<uint8_t>& mask,
+                          int full_scale) {
+    if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+        throw std::invalid_argument("images differ in size");
+    lab::Image8 out;
+    out.width = a.width;
+    out.height = a.height;
+    out.rgba.assign(a.rgba.size(), 255);
+    const size_t total = static_cast<size_t>(a.width) * a.height;
+    for (size_t i = 0; i < total; ++i) {
+        const uint8_t* p = &a.rgba[4 * i];
+        uint8_t* o = &out.rgba[4 * i];
+        const int d = pixel_diff(p, &b.rgba[4 * i]);
+        if (!mask.empty() && mask[i]) {
+            o[0] = 0, o[1] = 0, o[2] = 90;
+        } else if (d == 0) {
+            // Context: the truth's luminance at a quarter brightness.
+            const int l = (54 * p[0] + 183 * p[1] + 19 * p[2]) / 256;
+            o[0] = o[1] = o[2] = static_cast<uint8_t>(l / 4);
+        } else {
+            // Heat ramp over t ∈ (0, 1]: dark red → red → yellow → white.
+            const double t = std::min(1.0, double(d) / double(std::max(full_scale, 1)));
+            const double r = std::min(1.0, 0.3 + 2.1 * t), g = std::clamp(2.0 * t - 0.5, 0.0, 1.0),
+                         bl = std::clamp(3.0 * t - 2.0, 0.0, 1.0);
+            o[0] = static_cast<uint8_t>(std::lround(255.0 * r));
+            o[1] = static_cast<uint8_t>(std::lround(255.0 * g));
+            o[2] = static_cast<uint8_t>(std::lround(255.0 * bl));
+        }
+    }
+    return out;
 }
 
 }  // namespace ref

@@ -12,6 +12,8 @@
 #include "image_io.h"
 #include "reference/cpu_reference.h"
 
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -79,5 +81,48 @@ void write_diff_png(const std::string& path, const lab::Image8& actual, const Re
 CompareResult compare_and_report(const lab::Image8& actual, const RefImage& reference,
                                  const std::string& diff_path,
                                  const CompareOptions& options = {});
+
+// ---------------------------------------------------------------------------
+// Error figures between two 8-bit images (lab_compare, bench/tradeoff.py): how far a
+// lab's picture is from a truth, rather than pass/fail against a tolerance.
+// ---------------------------------------------------------------------------
+
+// sRGB-encoded 8-bit colour → CIE L*a*b* (D65 white, via linear sRGB and XYZ).
+glm::dvec3 srgb8_to_lab(const uint8_t rgb[3]);
+
+// CIEDE2000 colour difference of two L*a*b* colours (Sharma, Wu & Dalal 2005);
+// about 1 is a just-noticeable difference.
+double ciede2000(const glm::dvec3& lab1, const glm::dvec3& lab2);
+
+// Edges of an image seen from its colours alone (no object ids needed): a pixel whose
+// 3×3 neighbourhood holds a colour more than `threshold`/255 away in some channel
+// (silhouettes against the background or another object, hard shading edges).
+std::vector<uint8_t> colour_edge_mask(const lab::Image8& image, int threshold = 16);
+
+struct ErrorStats {
+    int width = 0, height = 0;
+    size_t pixels = 0;         // pixels counted (all, minus the mask)
+    size_t masked = 0;         // pixels left out by the mask
+    // Per pixel: the largest |difference| over R, G, B, in 1/255 units.
+    double mean_abs = 0.0;
+    double p99_abs = 0.0;      // 99th percentile (nearest rank)
+    int max_abs = 0;
+    double share_over_2 = 0.0; // share of pixels with a difference above 2/255 (0 … 1)
+    // Per pixel: CIEDE2000 between the two colours.
+    double mean_de = 0.0;
+    double p99_de = 0.0;
+
+    std::string line() const;  // one line "mean_abs=… p99_abs=… …" (what lab_compare prints)
+};
+
+// The figures of `b` against `a` (same size; throws std::invalid_argument otherwise).
+// Pixels with mask[i] != 0 are left out (mask may be empty: none).
+ErrorStats error_stats(const lab::Image8& a, const lab::Image8& b, const std::vector<uint8_t>& mask = {});
+
+// A picture of where b differs from a: a's luminance, dimmed, where they agree; a heat
+// colour (dark red → red → yellow → white) growing with the pixel's largest channel
+// difference up to `full_scale`/255 (and beyond, white). Masked pixels are dark blue.
+lab::Image8 error_heatmap(const lab::Image8& a, const lab::Image8& b, const std::vector<uint8_t>& mask = {},
+                          int full_scale = 32);
 
 }  // namespace ref

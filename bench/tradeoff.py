@@ -1,0 +1,523 @@
+#!/usr/bin/env python3
+"""tradeoff.py — frame time against error for one lab's knobs (docs/tradeoffs.md).
+
+    python3 bench/tradeoff.py LAB [--quick] [--build DIR] [--out-dir DIR] [--frames N] [--rounds R]
+
+For every configuration in the lab's knob table (KNOBS below) the script writes a scene
+file, runs the lab headless with --benchmark (LP_NUM_THREADS fixed; the same process
+writes its last frame to a PNG) and compares that PNG with the ideal reference
+(`lab_reference --ideal`: exact curved surfaces, per-pixel exact normals) using
+`lab_compare`. Rounds are interleaved (all configurations, then all again) so that a
+burst of load on the shared machine hits every configuration alike; a configuration's
+time is the median of its rounds' medians, and its spread (max − min over rounds) is
+written next to it.
+
+Writes OUT_DIR/LAB.csv and OUT_DIR/LAB.png (time against error, the Pareto front drawn,
+the default and the seeds' configurations labelled), and in a full run the README
+heatmaps. --quick: a handful of configurations at 320×180 with validation on, written to
+build/tradeoff_quick/, then checks that the CSV is well-formed and that the error grows
+when the tessellation drops (exit code 1 otherwise). CTest runs it.
+
+To add a lab: write a function returning its configurations (see lab1_configs) and add
+it to KNOBS; groups with "front": True get a Pareto front.
+"""
+import argparse
+import copy
+import csv
+import hashlib
+import json
+import math
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PRIMITIVES = {"plane", "cube", "sphere", "icosphere", "icosahedron", "cylinder", "cone", "torus"}
+ERROR_KEYS = ["mean_abs", "p99_abs", "max_abs", "over_2", "mean_de2000", "p99_de2000"]
+CSV_FIELDS = (["lab", "group", "config", "knob", "default", "seed", "median_ms", "p95_ms", "spread_ms", "rounds"]
+              + ERROR_KEYS + ["on_front", "dominated_by"])
+
+
+# ---------------------------------------------------------------------------
+# Scenes
+# ---------------------------------------------------------------------------
+
+def load_scene(name):
+    """A scene from scenes/, with model paths made absolute (variants are written elsewhere)."""
+    path = os.path.join(ROOT, "scenes", name)
+    with open(path) as f:
+        scene = json.load(f)
+    for obj in scene["objects"]:
+        if obj["mesh"] not in PRIMITIVES and not os.path.isabs(obj["mesh"]):
+            obj["mesh"] = os.path.normpath(os.path.join(os.path.dirname(path), obj["mesh"]))
+    return scene
+
+
+def tessellate(scene, s):
+    """Every curved primitive at 'level' s: sphere s × s/2, cylinder and cone s, torus 1.5·s × s/2.
+    s = 32 is exactly the primitives' defaults (docs/meshes.md: 32×16, 32, 32, 48×16)."""
+    out = copy.deepcopy(scene)
+    for obj in out["objects"]:
+        m = obj["mesh"]
+        if m == "sphere":
+            obj["segments"], obj["rings"] = s, max(2, s // 2)
+        elif m in ("cylinder", "cone"):
+            obj["segments"] = s  # rings: the default single band (the side is straight)
+            obj.pop("rings", None)
+        elif m == "torus":
+            obj["segments"], obj["rings"] = max(3, (3 * s) // 2), max(3, s // 2)
+    return out
+
+
+def set_mesh(scene, mesh, segments, rings):
+    out = copy.deepcopy(scene)
+    for obj in out["objects"]:
+        if obj["mesh"] == mesh:
+            obj["segments"] = segments
+            if rings:
+                obj["rings"] = rings
+    return out
+
+
+def truth_of(scene):
+    """What the ideal reference depends on: the scene without tessellation and shading model."""
+    t = copy.deepcopy(scene)
+    for obj in t["objects"]:
+        obj.pop("segments", None)
+        obj.pop("rings", None)
+    t.get("lighting", {}).pop("shading", None)
+    return t
+
+
+def config(name, group, scene, knob="", default=False, seed="", series=""):
+    """One configuration. `series` names a run of configurations in which only the
+    tessellation changes (ordered by `knob`, finer = larger): the quick check demands that
+    the error falls along it."""
+    return {"config": name, "group": group, "scene": scene, "knob": knob, "default": default, "seed": seed,
+            "series": series}
+
+
+# ---------------------------------------------------------------------------
+# The knob tables
+# ---------------------------------------------------------------------------
+
+def lab1_configs(quick):
+    base = load_scene("lab1_camera.json")
+    levels = [8, 16, 32, 64] if quick else [8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256]
+    out = [config(f"all curved at {s}", "tessellation", tessellate(base, s), knob=s, default=(s == 32),
+                  series="all") for s in levels]
+    if not quick:
+        # One primitive at a time around the defaults: is each default on the front by itself?
+        default = tessellate(base, 32)
+        for mesh, variants in [("sphere", [(16, 16), (32, 8), (32, 32), (64, 16), (64, 32)]),
+                               ("cylinder", [(16, 0), (64, 0)]), ("cone", [(16, 0), (64, 0)]),
+                               ("torus", [(24, 16), (48, 8), (48, 24), (96, 16), (96, 32)])]:
+            for seg, rings in variants:
+                name = f"{mesh} {seg}" + (f"x{rings}" if mesh in ("sphere", "torus") else "")
+                out.append(config(name, "tessellation", set_mesh(default, mesh, seg, rings),
+                                  knob=seg * max(rings, 1)))
+    return out
+
+
+def many_lights(n):
+    """The first n of lab2_many_lights.json's 8 + 32 + 32 lights, the types taken in turn."""
+    lights = load_scene("lab2_many_lights.json")["lights"]
+    by_type = [[l for l in lights if l["type"] == t] for t in ("directional", "point", "spot")]
+    order = []
+    while any(by_type):
+        for group in by_type:
+            if group:
+                order.append(group.pop(0))
+    return order[:n]
+
+
+def lab2_configs(quick):
+    base = load_scene("lab2_lighting.json")
+    base.setdefault("lighting", {})["markers"] = False  # the reference has no light markers
+    out = []
+    # Shading × tessellation, against per-pixel shading of the exact surfaces.
+    levels = [8, 16, 32] if quick else [8, 16, 32, 64, 128]
+    shadings = ["flat", "phong"] if quick else ["flat", "gouraud", "phong"]
+    for shading in shadings:
+        for s in levels:
+            scene = tessellate(base, s)
+            scene["lighting"]["shading"] = shading
+            seed = ""
+            if shading == "phong" and s == 32:
+                seed = "seed 000: Blinn-Phong per pixel, 1+2+1 lights"
+            out.append(config(f"{shading} {s}", "shading x tessellation", scene, knob=s,
+                              default=(shading == "phong" and s == 32), seed=seed, series=shading))
+    # Each lighting model at equal scene (default tessellation, per-pixel shading), each
+    # against its own truth.
+    models = ["lambert", "blinn_phong"] if quick else \
+        ["lambert", "phong", "blinn_phong", "toon", "oren_nayar", "minnaert", "cook_torrance", "ward"]
+    for model in models:
+        scene = copy.deepcopy(base)
+        scene["lighting"]["model"] = model
+        seed = "seed 001: Phong lighting" if model == "phong" else ""
+        out.append(config(model, "lighting model", scene, default=(model == "blinn_phong"), seed=seed))
+    # Light count (the default scene's objects, lights from lab2_many_lights.json).
+    counts = [1, 8] if quick else [1, 2, 4, 8, 16, 32, 72]
+    for n in counts:
+        scene = copy.deepcopy(base)
+        scene["lights"] = many_lights(n)
+        out.append(config(f"{n} lights", "light count", scene, knob=n))
+    return out
+
+
+KNOBS = {
+    "lab1_camera": {"configs": lab1_configs, "groups": {"tessellation": {"front": True}}},
+    "lab2_lighting": {"configs": lab2_configs,
+                      "groups": {"shading x tessellation": {"front": True}, "lighting model": {"front": False},
+                                 "light count": {"front": False}}},
+}
+
+
+# ---------------------------------------------------------------------------
+# Running
+# ---------------------------------------------------------------------------
+
+def run(cmd, env=None):
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    if p.returncode != 0:
+        sys.exit(f"tradeoff: {' '.join(cmd)} failed (exit {p.returncode}):\n{p.stdout}")
+    return p.stdout
+
+
+def parse_fields(text, prefix):
+    for line in text.splitlines():
+        if line.startswith(prefix) or prefix == "":
+            fields = dict(re.findall(r"(\w+)=([^\s]+)", line))
+            if fields:
+                return fields
+    sys.exit(f"tradeoff: no '{prefix}' line in:\n{text}")
+
+
+class Sweep:
+    def __init__(self, lab, args):
+        self.lab, self.args = lab, args
+        self.exe = os.path.join(args.build, lab, lab)
+        self.reference = os.path.join(args.build, "tests", "lab_reference")
+        self.compare = os.path.join(args.build, "tests", "lab_compare")
+        for path in (self.exe, self.reference, self.compare):
+            if not os.access(path, os.X_OK):
+                sys.exit(f"tradeoff: {path} not found (build first: cmake --build {args.build})")
+        self.env = dict(os.environ, LP_NUM_THREADS=str(args.threads))
+        self.tmp = tempfile.mkdtemp(prefix=f"tradeoff_{lab}_")
+        self.truths = {}
+
+    def write_scene(self, scene, name):
+        path = os.path.join(self.tmp, name + ".json")
+        with open(path, "w") as f:
+            json.dump(scene, f)
+        return path
+
+    def truth(self, scene, w, h, supersample=1):
+        """The ideal reference PNG of a scene (rendered once per distinct truth)."""
+        t = truth_of(scene)
+        key = hashlib.sha1((json.dumps(t, sort_keys=True) + f"{w}x{h}s{supersample}").encode()).hexdigest()[:12]
+        if key not in self.truths:
+            path = os.path.join(self.tmp, f"truth_{key}.png")
+            out = run([self.reference, "--lab", self.lab, "--scene", self.write_scene(t, "truth_" + key),
+                       "--width", str(w), "--height", str(h), "--ideal", "--supersample", str(supersample),
+                       "--out", path])
+            self.truths[key] = path
+            print(f"  truth {key}: {parse_fields(out, 'reference')['ms']} ms", flush=True)
+        return self.truths[key]
+
+    def render(self, scene_path, w, h, frames, png=None):
+        cmd = [self.exe, "--scene", scene_path, "--width", str(w), "--height", str(h), "--benchmark", str(frames)]
+        if png:
+            cmd += ["--out", png]
+        if self.args.quick:
+            cmd.append("--validate")  # quick runs are tests: validation on, timing not judged
+        return parse_fields(run(cmd, self.env), "benchmark")
+
+    def compare_png(self, truth, png, heatmap=None):
+        cmd = [self.compare, truth, png] + (["--heatmap", heatmap] if heatmap else [])
+        return parse_fields(run(cmd), "mean_abs")
+
+
+def measure(lab, args):
+    sweep = Sweep(lab, args)
+    w, h = (320, 180) if args.quick else (1280, 720)
+    configs = KNOBS[lab]["configs"](args.quick)
+    for i, c in enumerate(configs):
+        c["scene_path"] = sweep.write_scene(c["scene"], f"config_{i}")
+        c["times"], c["p95s"] = [], []
+    start = time.time()
+    for r in range(args.rounds):
+        for i, c in enumerate(configs):
+            png = os.path.join(sweep.tmp, f"config_{i}.png") if r == 0 else None
+            b = sweep.render(c["scene_path"], w, h, args.frames, png)
+            c["times"].append(float(b["median_ms"]))
+            c["p95s"].append(float(b["p95_ms"]))
+            if png:
+                e = sweep.compare_png(sweep.truth(c["scene"], w, h), png)
+                c["errors"] = {k: float(e[k].rstrip("%")) for k in ERROR_KEYS}
+            print(f"  round {r + 1}/{args.rounds} {c['group']:>22} | {c['config']:<18} "
+                  f"{c['times'][-1]:8.2f} ms  mean_abs {c['errors']['mean_abs']:.4f}", flush=True)
+    for c in configs:
+        c["median_ms"] = statistics.median(c["times"])
+        c["p95_ms"] = statistics.median(c["p95s"])
+        c["spread_ms"] = max(c["times"]) - min(c["times"])
+    mark_front(configs, KNOBS[lab]["groups"])
+    return configs, sweep, time.time() - start
+
+
+def mark_front(configs, groups):
+    """Pareto front per group: no other configuration both faster (lower median) and more
+    accurate (lower mean |error|). `dominated_by` lists those faster by more than the noise
+    (the larger of the two round-to-round spreads) as well: the robust verdict."""
+    for c in configs:
+        c["on_front"], c["dominated_by"] = "", ""
+        if not groups.get(c["group"], {}).get("front"):
+            continue
+        peers = [o for o in configs if o["group"] == c["group"] and o is not c]
+        err = c["errors"]["mean_abs"]
+        strict = [o for o in peers if o["median_ms"] < c["median_ms"] and o["errors"]["mean_abs"] < err]
+        robust = [o for o in strict if o["median_ms"] + max(o["spread_ms"], c["spread_ms"]) < c["median_ms"]]
+        c["on_front"] = "yes" if not strict else "no"
+        c["dominated_by"] = ";".join(o["config"] for o in robust)
+
+
+def write_csv(lab, configs, path, rounds):
+    with open(path, "w", newline="") as f:
+        wr = csv.DictWriter(f, fieldnames=CSV_FIELDS)
+        wr.writeheader()
+        for c in configs:
+            row = {"lab": lab, "group": c["group"], "config": c["config"], "knob": c["knob"],
+                   "default": "yes" if c["default"] else "", "seed": c["seed"],
+                   "median_ms": f"{c['median_ms']:.3f}", "p95_ms": f"{c['p95_ms']:.3f}",
+                   "spread_ms": f"{c['spread_ms']:.3f}", "rounds": rounds,
+                   "on_front": c["on_front"], "dominated_by": c["dominated_by"]}
+            row.update({k: f"{c['errors'][k]:.4f}" for k in ERROR_KEYS})
+            wr.writerow(row)
+
+
+# ---------------------------------------------------------------------------
+# Plot
+# ---------------------------------------------------------------------------
+
+def plot(lab, configs, path, title_note):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    groups = list(dict.fromkeys(c["group"] for c in configs))
+    fig, axes = plt.subplots(1, len(groups), figsize=(6.4 * len(groups), 5.0), squeeze=False)
+    markers = {"flat": "s", "gouraud": "^", "phong": "o", "all": "o"}
+    for ax, group in zip(axes[0], groups):
+        cs = [c for c in configs if c["group"] == group]
+        front_group = KNOBS[lab]["groups"].get(group, {}).get("front")
+        if group == "light count":
+            xs = [c["knob"] for c in cs]
+            ax.errorbar(xs, [c["median_ms"] for c in cs], yerr=[c["spread_ms"] / 2 for c in cs], fmt="o-",
+                        color="tab:blue", capsize=3)
+            ax.set_xscale("log", base=2)
+            ax.set_xlabel("lights (directional, point, spot in turn)")
+            ax.set_ylabel("median frame time (ms)")
+            for c in cs:
+                ax.annotate(f"err {c['errors']['mean_abs']:.2f}", (c["knob"], c["median_ms"]),
+                            textcoords="offset points", xytext=(4, -12), fontsize=7, color="0.35")
+            ax.set_title(f"{group}")
+            ax.grid(True, alpha=0.3)
+            continue
+        series = list(dict.fromkeys(c["series"] for c in cs))
+        for s in series:
+            pts = [c for c in cs if c["series"] == s]
+            label = s if s else ("one primitive varied" if group == "tessellation" else group)
+            if s:
+                pts.sort(key=lambda c: c["knob"])
+                ax.plot([c["median_ms"] for c in pts], [c["errors"]["mean_abs"] for c in pts],
+                        marker=markers.get(s, "o"), linestyle="-", alpha=0.8, label=label)
+            else:
+                ax.scatter([c["median_ms"] for c in pts], [c["errors"]["mean_abs"] for c in pts],
+                           marker="x", color="0.4", label=label, zorder=3)
+        for c in cs:
+            ax.errorbar(c["median_ms"], c["errors"]["mean_abs"], xerr=c["spread_ms"] / 2, fmt="none",
+                        ecolor="0.6", elinewidth=0.8, capsize=2)
+            text = str(c["knob"]) if c["series"] else c["config"]
+            if c["default"]:
+                text = f"{c['config']} (default)"
+            if c["seed"]:
+                text += f"\n[{c['seed']}]"
+            ax.annotate(text, (c["median_ms"], c["errors"]["mean_abs"]), textcoords="offset points",
+                        xytext=(5, 4), fontsize=7 if not (c["default"] or c["seed"]) else 8,
+                        fontweight="bold" if c["default"] else "normal")
+            if c["default"]:
+                ax.scatter([c["median_ms"]], [c["errors"]["mean_abs"]], s=160, facecolors="none",
+                           edgecolors="red", linewidths=1.6, zorder=4)
+        if front_group:
+            front = sorted([c for c in cs if c["on_front"] == "yes"], key=lambda c: c["median_ms"])
+            ax.step([c["median_ms"] for c in front], [c["errors"]["mean_abs"] for c in front], where="post",
+                    color="black", linewidth=1.2, alpha=0.7, label="Pareto front")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("median frame time (ms, log)")
+        ax.set_ylabel("mean |error| vs ideal (1/255, log)")
+        ax.set_title(group)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8, loc="best")
+    fig.suptitle(f"{lab}: time against error ({title_note})", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+# ---------------------------------------------------------------------------
+# README heatmaps: where the error is
+# ---------------------------------------------------------------------------
+
+def sphere_scene(segments, rings, lit, shading="phong"):
+    scene = {
+        "camera": {"mode": "lookat", "position": [0, 0, 2.2], "target": [0, 0, 0], "fov_y_deg": 40},
+        "background": [0.02, 0.03, 0.06],
+        "materials": {"m": {"albedo": [0.2, 0.4, 0.9], "specular": [0.6, 0.6, 0.6], "shininess": 48}},
+        "objects": [{"mesh": "sphere", "material": "m", "segments": segments, "rings": rings}],
+    }
+    if lit:
+        scene["ambient"] = {"color": [1, 1, 1], "intensity": 0.05}
+        scene["lighting"] = {"model": "blinn_phong", "shading": shading}
+        scene["lights"] = [{"type": "point", "position": [0.9, 0.8, 1.2], "color": [1, 1, 1], "intensity": 1.6,
+                            "attenuation": [1, 0.2, 0.1]}]
+    return scene
+
+
+def heatmap_figure(sweep, scene, name, title, out_dir, w=480, h=360):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.image as mpimg
+    import matplotlib.pyplot as plt
+
+    path = sweep.write_scene(scene, name)
+    png = os.path.join(sweep.tmp, name + ".png")
+    sweep.render(path, w, h, 1, png)
+    truth = sweep.truth(scene, w, h)
+    heat = os.path.join(sweep.tmp, name + "_heat.png")
+    e = sweep.compare_png(truth, png, heat)
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.5))
+    for ax, img, label in zip(axes, [truth, png, heat], ["ideal (lab_reference --ideal)", "lab", "|error| heatmap"]):
+        ax.imshow(mpimg.imread(img))
+        ax.set_title(label, fontsize=9)
+        ax.axis("off")
+    fig.suptitle(f"{title}\nmean |error| {float(e['mean_abs']):.2f}/255, max {e['max_abs']}/255, "
+                 f"{e['over_2']} of pixels above 2/255, mean CIEDE2000 {float(e['mean_de2000']):.2f}", fontsize=9)
+    fig.tight_layout()
+    out = os.path.join(out_dir, name + ".png")
+    fig.savefig(out, dpi=80)
+    plt.close(fig)
+    print(f"  heatmap {out}: {e}")
+
+
+def heatmaps(lab, sweep, out_dir):
+    if lab == "lab1_camera":
+        heatmap_figure(sweep, sphere_scene(16, 8, lit=False), "lab1_sphere16_silhouette",
+                       "a 16-segment sphere (16 × 8) against the ideal sphere: only the silhouette differs", out_dir)
+    elif lab == "lab2_lighting":
+        for shading in ("gouraud", "phong"):
+            heatmap_figure(sweep, sphere_scene(16, 8, lit=True, shading=shading), f"lab2_sphere16_{shading}",
+                           f"{shading.capitalize()} shading of a 16 × 8 sphere under a point light against "
+                           f"per-pixel shading of the ideal sphere", out_dir)
+
+
+# ---------------------------------------------------------------------------
+# Quick check (CTest)
+# ---------------------------------------------------------------------------
+
+def check(lab, csv_path, configs):
+    problems = []
+    with open(csv_path, newline="") as f:
+        rows = list(csv.DictReader(f))
+        if rows and list(rows[0].keys()) != CSV_FIELDS:
+            problems.append(f"header {list(rows[0].keys())} != {CSV_FIELDS}")
+    if len(rows) != len(configs):
+        problems.append(f"{len(rows)} rows for {len(configs)} configurations")
+    for row in rows:
+        for k in ["median_ms", "p95_ms", "spread_ms"] + ERROR_KEYS:
+            try:
+                v = float(row[k])
+            except (TypeError, ValueError):
+                problems.append(f"{row.get('config')}: {k} = {row.get(k)!r} is not a number")
+                continue
+            if not math.isfinite(v) or v < 0:
+                problems.append(f"{row['config']}: {k} = {v}")
+        if float(row["median_ms"] or 0) <= 0:
+            problems.append(f"{row['config']}: no frame time")
+    if sum(1 for r in rows if r["default"] == "yes") < 1:
+        problems.append("no default configuration")
+    # The error must grow when the tessellation drops (data, not timing).
+    for series in sorted({c["series"] for c in configs if c["series"]}):
+        pts = sorted([c for c in configs if c["series"] == series], key=lambda c: c["knob"])
+        for finer, coarser in zip(pts[1:], pts[:-1]):
+            if not coarser["errors"]["mean_abs"] > finer["errors"]["mean_abs"]:
+                problems.append(f"series {series}: error at {coarser['knob']} ({coarser['errors']['mean_abs']}) "
+                                f"not above error at {finer['knob']} ({finer['errors']['mean_abs']})")
+    for p in problems:
+        print(f"tradeoff check: {p}")
+    return not problems
+
+
+def ensure_matplotlib():
+    """matplotlib comes from Debian (python3-matplotlib, scripts/setup.sh): if this python3 is
+    another one (pyenv, a venv) without it, run again under Debian's."""
+    try:
+        import matplotlib  # noqa: F401
+        return
+    except ImportError:
+        pass
+    debian = "/usr/bin/python3"
+    if os.path.exists(debian) and os.path.realpath(sys.executable) != os.path.realpath(debian):
+        os.execv(debian, [debian] + sys.argv)
+    sys.exit("tradeoff: matplotlib is missing: install python3-matplotlib (bash scripts/setup.sh)")
+
+
+def main():
+    ensure_matplotlib()
+    ap = argparse.ArgumentParser(description="frame time against error for a lab's knobs")
+    ap.add_argument("lab", choices=sorted(KNOBS))
+    ap.add_argument("--quick", action="store_true", help="a few configurations at 320x180, then check the CSV")
+    ap.add_argument("--build", default=os.environ.get("LAB_BUILD_DIR", os.path.join(ROOT, "build")))
+    ap.add_argument("--out-dir", help="default: docs/tradeoffs (quick: BUILD/tradeoff_quick)")
+    ap.add_argument("--frames", type=int, help="benchmark frames per run (default: 40 lab 1, 15 lab 2; quick 3)")
+    ap.add_argument("--rounds", type=int, help="interleaved rounds (default 3; quick 1)")
+    ap.add_argument("--threads", type=int, default=2, help="LP_NUM_THREADS (default 2)")
+    ap.add_argument("--no-heatmaps", action="store_true")
+    args = ap.parse_args()
+    args.build = os.path.abspath(args.build)
+    if args.frames is None:
+        args.frames = 3 if args.quick else (40 if args.lab == "lab1_camera" else 15)
+    if args.rounds is None:
+        args.rounds = 1 if args.quick else 3
+    out_dir = args.out_dir or (os.path.join(args.build, "tradeoff_quick") if args.quick
+                               else os.path.join(ROOT, "docs", "tradeoffs"))
+    os.makedirs(out_dir, exist_ok=True)
+
+    wall = time.time()
+    configs, sweep, _ = measure(args.lab, args)
+    csv_path = os.path.join(out_dir, args.lab + ".csv")
+    write_csv(args.lab, configs, csv_path, args.rounds)
+    res = "320x180" if args.quick else "1280x720"
+    plot(args.lab, configs, os.path.join(out_dir, args.lab + ".png"),
+         f"{res}, LP_NUM_THREADS={args.threads}, median of {args.rounds} rounds x {args.frames} frames; "
+         f"bars: round-to-round spread")
+    if not args.quick and not args.no_heatmaps:
+        heatmaps(args.lab, sweep, out_dir)
+    print(f"tradeoff: wrote {csv_path} and {args.lab}.png in {time.time() - wall:.0f} s")
+    for c in configs:
+        if c["default"]:
+            print(f"  default {c['group']} | {c['config']}: {c['median_ms']:.2f} ms (spread {c['spread_ms']:.2f}), "
+                  f"mean_abs {c['errors']['mean_abs']:.4f}, on front: {c['on_front'] or 'n/a'}"
+                  + (f", dominated beyond noise by {c['dominated_by']}" if c["dominated_by"] else ""))
+    shutil.rmtree(sweep.tmp, ignore_errors=True)
+    if args.quick and not check(args.lab, csv_path, configs):
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
