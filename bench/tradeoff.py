@@ -7,10 +7,15 @@ For every configuration in the lab's knob table (KNOBS below) the script writes 
 file, runs the lab headless with --benchmark (LP_NUM_THREADS fixed; the same process
 writes its last frame to a PNG) and compares that PNG with the ideal reference
 (`lab_reference --ideal`: exact curved surfaces, per-pixel exact normals) using
-`lab_compare`. Rounds are interleaved (all configurations, then all again) so that a
-burst of load on the shared machine hits every configuration alike; a configuration's
-time is the median of its rounds' medians, and its spread (max − min over rounds) is
-written next to it.
+`lab_compare`. Rounds are interleaved (all configurations, then all again, in another
+order) so that load on the shared machine hits every configuration alike.
+
+Two costs per configuration: the wall-clock frame time of --benchmark (median of the
+rounds' medians, their spread, the best round) and the CPU time one frame costs (all of
+lavapipe's threads; the CPU seconds of the run minus those of a 1-frame run, over the
+frames between). On a machine shared with others the wall clock mostly measures them
+(x2-3 between rounds); the CPU time repeats within a few per cent, so the front is drawn
+on it.
 
 Writes OUT_DIR/LAB.csv and OUT_DIR/LAB.png (time against error, the Pareto front drawn,
 the default and the seeds' configurations labelled), and in a full run the README
@@ -28,6 +33,7 @@ import hashlib
 import json
 import math
 import os
+import random
 import re
 import shutil
 import statistics
@@ -39,7 +45,8 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRIMITIVES = {"plane", "cube", "sphere", "icosphere", "icosahedron", "cylinder", "cone", "torus"}
 ERROR_KEYS = ["mean_abs", "p99_abs", "max_abs", "over_2", "mean_de2000", "p99_de2000"]
-CSV_FIELDS = (["lab", "group", "config", "knob", "default", "seed", "median_ms", "p95_ms", "spread_ms", "rounds"]
+CSV_FIELDS = (["lab", "group", "config", "knob", "default", "seed", "cpu_ms", "cpu_spread_ms", "median_ms", "p95_ms",
+               "spread_ms", "best_ms", "rounds", "round_ms"]
               + ERROR_KEYS + ["on_front", "dominated_by"])
 
 
@@ -149,7 +156,7 @@ def lab2_configs(quick):
             scene["lighting"]["shading"] = shading
             seed = ""
             if shading == "phong" and s == 32:
-                seed = "seed 000: Blinn-Phong per pixel, 1+2+1 lights"
+                seed = "seed 000"  # Blinn-Phong per pixel, 1 directional + 2 point + 1 spot light
             out.append(config(f"{shading} {s}", "shading x tessellation", scene, knob=s,
                               default=(shading == "phong" and s == 32), seed=seed, series=shading))
     # Each lighting model at equal scene (default tessellation, per-pixel shading), each
@@ -159,14 +166,17 @@ def lab2_configs(quick):
     for model in models:
         scene = copy.deepcopy(base)
         scene["lighting"]["model"] = model
-        seed = "seed 001: Phong lighting" if model == "phong" else ""
+        seed = "seed 001" if model == "phong" else ""  # the Phong lighting model
         out.append(config(model, "lighting model", scene, default=(model == "blinn_phong"), seed=seed))
     # Light count (the default scene's objects, lights from lab2_many_lights.json).
     counts = [1, 8] if quick else [1, 2, 4, 8, 16, 32, 72]
     for n in counts:
         scene = copy.deepcopy(base)
         scene["lights"] = many_lights(n)
-        out.append(config(f"{n} lights", "light count", scene, knob=n))
+        c = config(f"{n} lights", "light count", scene, knob=n)
+        if n >= 32:
+            c["slow"] = 2  # about a second a frame: half the frames
+        out.append(c)
     return out
 
 
@@ -182,11 +192,18 @@ KNOBS = {
 # Running
 # ---------------------------------------------------------------------------
 
-def run(cmd, env=None):
-    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+def run(cmd, env=None, cpu=None):
+    """Runs cmd, returns its output; exits on failure. cpu: a list that gets the child's CPU
+    seconds (user + system, all its threads) appended."""
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    out = p.stdout.read()
+    _, status, usage = os.wait4(p.pid, 0)
+    p.returncode = os.waitstatus_to_exitcode(status)
     if p.returncode != 0:
-        sys.exit(f"tradeoff: {' '.join(cmd)} failed (exit {p.returncode}):\n{p.stdout}")
-    return p.stdout
+        sys.exit(f"tradeoff: {' '.join(cmd)} failed (exit {p.returncode}):\n{out}")
+    if cpu is not None:
+        cpu.append(usage.ru_utime + usage.ru_stime)
+    return out
 
 
 def parse_fields(text, prefix):
@@ -230,13 +247,24 @@ class Sweep:
             print(f"  truth {key}: {parse_fields(out, 'reference')['ms']} ms", flush=True)
         return self.truths[key]
 
-    def render(self, scene_path, w, h, frames, png=None):
+    def render(self, scene_path, w, h, frames, png=None, cpu=None):
         cmd = [self.exe, "--scene", scene_path, "--width", str(w), "--height", str(h), "--benchmark", str(frames)]
         if png:
             cmd += ["--out", png]
         if self.args.quick:
             cmd.append("--validate")  # quick runs are tests: validation on, timing not judged
-        return parse_fields(run(cmd, self.env), "benchmark")
+        return parse_fields(run(cmd, self.env, cpu), "benchmark")
+
+    def frame_cpu_ms(self, scene_path, w, h, frames, png=None):
+        """--benchmark `frames` (wall-clock figures) and the CPU time one frame costs: the CPU
+        seconds of that run minus those of a 1-frame run (start-up, pipeline compilation, warm-up
+        are the same in both), over the frames between them. Other users of the machine delay a
+        frame (wall clock) but hardly change its CPU time."""
+        cpu = []
+        self.render(scene_path, w, h, 1, None, cpu)
+        b = self.render(scene_path, w, h, frames, png, cpu)
+        b["cpu_ms"] = max(0.0, (cpu[1] - cpu[0]) / (frames - 1) * 1000.0)
+        return b
 
     def compare_png(self, truth, png, heatmap=None):
         cmd = [self.compare, truth, png] + (["--heatmap", heatmap] if heatmap else [])
@@ -252,36 +280,50 @@ def measure(lab, args):
         c["times"], c["p95s"] = [], []
     start = time.time()
     for r in range(args.rounds):
-        for i, c in enumerate(configs):
+        # A different order each round (fixed seeds: repeatable), so that load from other users
+        # of the machine does not fall on the same configurations every round.
+        order = list(range(len(configs)))
+        if r > 0:
+            random.Random(r).shuffle(order)
+        for i in order:
+            c = configs[i]
             png = os.path.join(sweep.tmp, f"config_{i}.png") if r == 0 else None
-            b = sweep.render(c["scene_path"], w, h, args.frames, png)
+            frames = max(3, args.frames // c.get("slow", 1))
+            b = sweep.frame_cpu_ms(c["scene_path"], w, h, frames, png)
+            c.setdefault("cpu", []).append(b["cpu_ms"])
             c["times"].append(float(b["median_ms"]))
             c["p95s"].append(float(b["p95_ms"]))
             if png:
                 e = sweep.compare_png(sweep.truth(c["scene"], w, h), png)
                 c["errors"] = {k: float(e[k].rstrip("%")) for k in ERROR_KEYS}
             print(f"  round {r + 1}/{args.rounds} {c['group']:>22} | {c['config']:<18} "
-                  f"{c['times'][-1]:8.2f} ms  mean_abs {c['errors']['mean_abs']:.4f}", flush=True)
+                  f"cpu {c['cpu'][-1]:8.2f} ms  wall {c['times'][-1]:8.2f} ms  mean_abs {c['errors']['mean_abs']:.4f}",
+                  flush=True)
     for c in configs:
         c["median_ms"] = statistics.median(c["times"])
         c["p95_ms"] = statistics.median(c["p95s"])
         c["spread_ms"] = max(c["times"]) - min(c["times"])
+        c["best_ms"] = min(c["times"])
+        c["cpu_ms"] = statistics.median(c["cpu"])
+        c["cpu_spread_ms"] = max(c["cpu"]) - min(c["cpu"])
     mark_front(configs, KNOBS[lab]["groups"])
     return configs, sweep, time.time() - start
 
 
 def mark_front(configs, groups):
-    """Pareto front per group: no other configuration both faster (lower median) and more
-    accurate (lower mean |error|). `dominated_by` lists those faster by more than the noise
-    (the larger of the two round-to-round spreads) as well: the robust verdict."""
+    """Pareto front per group: no other configuration both cheaper and more accurate (lower
+    mean |error|). Cheaper = less CPU time per frame (`cpu_ms`; on a shared machine the
+    wall-clock frame time mostly measures the other users). `dominated_by` lists those cheaper
+    by more than the noise (the larger of the two round-to-round CPU spreads) as well: the
+    verdict that survives a re-run."""
     for c in configs:
         c["on_front"], c["dominated_by"] = "", ""
         if not groups.get(c["group"], {}).get("front"):
             continue
         peers = [o for o in configs if o["group"] == c["group"] and o is not c]
         err = c["errors"]["mean_abs"]
-        strict = [o for o in peers if o["median_ms"] < c["median_ms"] and o["errors"]["mean_abs"] < err]
-        robust = [o for o in strict if o["median_ms"] + max(o["spread_ms"], c["spread_ms"]) < c["median_ms"]]
+        strict = [o for o in peers if o["cpu_ms"] < c["cpu_ms"] and o["errors"]["mean_abs"] < err]
+        robust = [o for o in strict if o["cpu_ms"] + max(o["cpu_spread_ms"], c["cpu_spread_ms"]) < c["cpu_ms"]]
         c["on_front"] = "yes" if not strict else "no"
         c["dominated_by"] = ";".join(o["config"] for o in robust)
 
@@ -294,7 +336,9 @@ def write_csv(lab, configs, path, rounds):
             row = {"lab": lab, "group": c["group"], "config": c["config"], "knob": c["knob"],
                    "default": "yes" if c["default"] else "", "seed": c["seed"],
                    "median_ms": f"{c['median_ms']:.3f}", "p95_ms": f"{c['p95_ms']:.3f}",
-                   "spread_ms": f"{c['spread_ms']:.3f}", "rounds": rounds,
+                   "spread_ms": f"{c['spread_ms']:.3f}", "best_ms": f"{c['best_ms']:.3f}",
+                   "cpu_ms": f"{c['cpu_ms']:.3f}", "cpu_spread_ms": f"{c['cpu_spread_ms']:.3f}", "rounds": rounds,
+                   "round_ms": ";".join(f"{t:.2f}" for t in c["times"]),
                    "on_front": c["on_front"], "dominated_by": c["dominated_by"]}
             row.update({k: f"{c['errors'][k]:.4f}" for k in ERROR_KEYS})
             wr.writerow(row)
@@ -309,65 +353,135 @@ def plot(lab, configs, path, title_note):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    groups = list(dict.fromkeys(c["group"] for c in configs))
-    fig, axes = plt.subplots(1, len(groups), figsize=(6.4 * len(groups), 5.0), squeeze=False)
-    markers = {"flat": "s", "gouraud": "^", "phong": "o", "all": "o"}
-    for ax, group in zip(axes[0], groups):
+    # One panel per group; a group with a front and single-primitive variants gets a second,
+    # zoomed panel around its default, where those variants are labelled.
+    panels = []
+    for group in dict.fromkeys(c["group"] for c in configs):
         cs = [c for c in configs if c["group"] == group]
-        front_group = KNOBS[lab]["groups"].get(group, {}).get("front")
-        if group == "light count":
-            xs = [c["knob"] for c in cs]
-            ax.errorbar(xs, [c["median_ms"] for c in cs], yerr=[c["spread_ms"] / 2 for c in cs], fmt="o-",
-                        color="tab:blue", capsize=3)
-            ax.set_xscale("log", base=2)
-            ax.set_xlabel("lights (directional, point, spot in turn)")
-            ax.set_ylabel("median frame time (ms)")
-            for c in cs:
-                ax.annotate(f"err {c['errors']['mean_abs']:.2f}", (c["knob"], c["median_ms"]),
-                            textcoords="offset points", xytext=(4, -12), fontsize=7, color="0.35")
-            ax.set_title(f"{group}")
-            ax.grid(True, alpha=0.3)
-            continue
-        series = list(dict.fromkeys(c["series"] for c in cs))
-        for s in series:
-            pts = [c for c in cs if c["series"] == s]
-            label = s if s else ("one primitive varied" if group == "tessellation" else group)
-            if s:
-                pts.sort(key=lambda c: c["knob"])
-                ax.plot([c["median_ms"] for c in pts], [c["errors"]["mean_abs"] for c in pts],
-                        marker=markers.get(s, "o"), linestyle="-", alpha=0.8, label=label)
-            else:
-                ax.scatter([c["median_ms"] for c in pts], [c["errors"]["mean_abs"] for c in pts],
-                           marker="x", color="0.4", label=label, zorder=3)
-        for c in cs:
-            ax.errorbar(c["median_ms"], c["errors"]["mean_abs"], xerr=c["spread_ms"] / 2, fmt="none",
-                        ecolor="0.6", elinewidth=0.8, capsize=2)
-            text = str(c["knob"]) if c["series"] else c["config"]
-            if c["default"]:
-                text = f"{c['config']} (default)"
-            if c["seed"]:
-                text += f"\n[{c['seed']}]"
-            ax.annotate(text, (c["median_ms"], c["errors"]["mean_abs"]), textcoords="offset points",
-                        xytext=(5, 4), fontsize=7 if not (c["default"] or c["seed"]) else 8,
-                        fontweight="bold" if c["default"] else "normal")
-            if c["default"]:
-                ax.scatter([c["median_ms"]], [c["errors"]["mean_abs"]], s=160, facecolors="none",
-                           edgecolors="red", linewidths=1.6, zorder=4)
-        if front_group:
-            front = sorted([c for c in cs if c["on_front"] == "yes"], key=lambda c: c["median_ms"])
-            ax.step([c["median_ms"] for c in front], [c["errors"]["mean_abs"] for c in front], where="post",
-                    color="black", linewidth=1.2, alpha=0.7, label="Pareto front")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("median frame time (ms, log)")
-        ax.set_ylabel("mean |error| vs ideal (1/255, log)")
-        ax.set_title(group)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8, loc="best")
-    fig.suptitle(f"{lab}: time against error ({title_note})", fontsize=11)
+        if KNOBS[lab]["groups"].get(group, {}).get("front"):
+            panels.append((group, cs, "front"))
+            if any(not c["series"] for c in cs):
+                panels.append((group, cs, "zoom"))
+        elif group == "light count":
+            panels.append((group, cs, "count"))
+        else:
+            panels.append((group, cs, "bars"))
+    ratios = [1.5 if kind in ("front", "zoom") else 1.0 for _, _, kind in panels]
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.6 * sum(ratios), 5.6), squeeze=False,
+                             gridspec_kw={"width_ratios": ratios})
+    for ax, (group, cs, kind) in zip(axes[0], panels):
+        {"front": plot_front, "zoom": plot_front, "count": plot_count, "bars": plot_bars}[kind](ax, group, cs, kind)
+    fig.suptitle(f"{lab}: time against error\n{title_note}", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=90)
     plt.close(fig)
+
+
+def err(c):
+    return c["errors"]["mean_abs"]
+
+
+def plot_front(ax, group, cs, kind):
+    markers = {"flat": "s", "gouraud": "^", "phong": "o", "all": "o"}
+    zoom = kind == "zoom"
+    for s in dict.fromkeys(c["series"] for c in cs):
+        pts = [c for c in cs if c["series"] == s]
+        if s:
+            pts.sort(key=lambda c: c["knob"])
+            ax.plot([c["cpu_ms"] for c in pts], [err(c) for c in pts], marker=markers.get(s, "o"), linestyle="-",
+                    alpha=0.8, label=f"{s} (segments)" if s == "all" else s)
+        else:
+            ax.scatter([c["cpu_ms"] for c in pts], [err(c) for c in pts], marker="x", color="0.3", zorder=3,
+                       label="one primitive varied, others at default")
+    front = sorted([c for c in cs if c["on_front"] == "yes"], key=lambda c: c["cpu_ms"])
+    ax.step([c["cpu_ms"] for c in front], [err(c) for c in front], where="post", color="black", linewidth=1.2,
+            alpha=0.7, label="Pareto front")
+    for c in cs:
+        ax.errorbar(c["cpu_ms"], err(c), xerr=c["cpu_spread_ms"] / 2, fmt="none", ecolor="0.6",
+                    elinewidth=0.8, capsize=2)
+        if c["default"]:
+            ax.scatter([c["cpu_ms"]], [err(c)], s=170, facecolors="none", edgecolors="red", linewidths=1.6, zorder=4)
+        if not c["series"] and not zoom:
+            continue  # labelled in the zoomed panel
+        text = str(c["knob"]) if c["series"] else c["config"]
+        if c["default"]:
+            text = f"{c['config']} (default)"
+        if c["seed"]:
+            text += f" = {c['seed']}"
+        special = c["default"] or c["seed"]
+        ax.annotate(text, (c["cpu_ms"], err(c)), textcoords="offset points", xytext=(5, 4),
+                    fontsize=8 if special else 7, fontweight="bold" if c["default"] else "normal",
+                    color="darkred" if special else "black")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    if zoom:
+        near = [c for c in cs if not c["series"] or c["default"]]
+        xs = [c["cpu_ms"] for c in near]
+        ys = [err(c) for c in near]
+        ax.set_xlim(min(xs) / 1.08, max(xs) * 1.15)
+        ax.set_ylim(min(ys) / 1.3, max(ys) * 1.3)
+        ax.set_title(f"{group}: around the default")
+    else:
+        ax.set_title(group)
+    ax.set_xlabel("CPU time per frame (ms, all threads, log)")
+    ax.set_ylabel("mean |error| vs ideal (1/255, log)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="upper right")
+
+
+def plot_count(ax, group, cs, kind):
+    xs = [c["knob"] for c in cs]
+    ax.errorbar(xs, [c["cpu_ms"] for c in cs], yerr=[c["cpu_spread_ms"] / 2 for c in cs], fmt="o-",
+                color="tab:blue", capsize=3, label="measured")
+    # Cost proportional to the number of lights, through the largest count: a straight line of slope 1.
+    last = max(cs, key=lambda c: c["knob"])
+    ax.plot(xs, [last["cpu_ms"] * x / last["knob"] for x in xs], ":", color="0.5", label="∝ lights")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.legend(fontsize=7, loc="upper left")
+    ax.set_xticks(xs)
+    ax.set_xticklabels([str(x) for x in xs])
+    ax.set_xlabel("lights (directional, point, spot in turn)")
+    ax.set_ylabel("CPU time per frame (ms, all threads, log)")
+    for c in cs:
+        ax.annotate(f"{c['cpu_ms']:.0f} ms\nerr {err(c):.2f}", (c["knob"], c["cpu_ms"]), textcoords="offset points",
+                    xytext=(-10, 8), fontsize=7, color="0.25")
+    ax.set_title(f"{group}\n(error vs each count's own ideal)")
+    ax.grid(True, alpha=0.3)
+
+
+def plot_bars(ax, group, cs, kind):
+    ys = list(range(len(cs)))
+    ax.barh(ys, [c["cpu_ms"] for c in cs], xerr=[c["cpu_spread_ms"] / 2 for c in cs],
+            color=["tab:red" if c["default"] else "tab:blue" for c in cs], alpha=0.75, capsize=2)
+    ax.set_yticks(ys)
+    ax.set_yticklabels([c["config"] + (" (default)" if c["default"] else "") + (f" = {c['seed']}" if c["seed"] else "")
+                        for c in cs], fontsize=8)
+    ax.invert_yaxis()
+    for y, c in zip(ys, cs):
+        ax.annotate(f" {c['cpu_ms']:.1f} ms, err {err(c):.2f}", (c["cpu_ms"] + c["cpu_spread_ms"] / 2, y),
+                    va="center", fontsize=7)
+    ax.set_xlabel("CPU time per frame (ms, all threads)")
+    ax.set_title(f"{group} (equal scene;\nerror vs each model's own ideal)")
+    ax.grid(True, axis="x", alpha=0.3)
+    ax.set_xlim(0, max(c["cpu_ms"] for c in cs) * 1.45)
+
+
+def replot(lab, csv_path, out_png, quick):
+    """Draw LAB.png again from LAB.csv (the configurations' roles come from the knob table)."""
+    configs = {c["config"]: c for c in KNOBS[lab]["configs"](quick)}
+    out = []
+    with open(csv_path, newline="") as f:
+        for row in csv.DictReader(f):
+            c = dict(configs.get(row["config"], config(row["config"], row["group"], {})))
+            c["group"] = row["group"]
+            for k in ("median_ms", "p95_ms", "spread_ms", "best_ms", "cpu_ms", "cpu_spread_ms"):
+                c[k] = float(row[k])
+            c["errors"] = {k: float(row[k]) for k in ERROR_KEYS}
+            c["on_front"], c["dominated_by"] = row["on_front"], row["dominated_by"]
+            c["rounds"] = row["rounds"]
+            out.append(c)
+    return out
 
 
 # ---------------------------------------------------------------------------
@@ -439,7 +553,7 @@ def check(lab, csv_path, configs):
     if len(rows) != len(configs):
         problems.append(f"{len(rows)} rows for {len(configs)} configurations")
     for row in rows:
-        for k in ["median_ms", "p95_ms", "spread_ms"] + ERROR_KEYS:
+        for k in ["cpu_ms", "cpu_spread_ms", "median_ms", "p95_ms", "spread_ms", "best_ms"] + ERROR_KEYS:
             try:
                 v = float(row[k])
             except (TypeError, ValueError):
@@ -484,34 +598,40 @@ def main():
     ap.add_argument("--quick", action="store_true", help="a few configurations at 320x180, then check the CSV")
     ap.add_argument("--build", default=os.environ.get("LAB_BUILD_DIR", os.path.join(ROOT, "build")))
     ap.add_argument("--out-dir", help="default: docs/tradeoffs (quick: BUILD/tradeoff_quick)")
-    ap.add_argument("--frames", type=int, help="benchmark frames per run (default: 40 lab 1, 15 lab 2; quick 3)")
+    ap.add_argument("--frames", type=int, help="benchmark frames per run (default: 31 lab 1, 11 lab 2; quick 3)")
     ap.add_argument("--rounds", type=int, help="interleaved rounds (default 3; quick 1)")
     ap.add_argument("--threads", type=int, default=2, help="LP_NUM_THREADS (default 2)")
     ap.add_argument("--no-heatmaps", action="store_true")
+    ap.add_argument("--replot", action="store_true", help="only draw LAB.png again from LAB.csv")
     args = ap.parse_args()
     args.build = os.path.abspath(args.build)
     if args.frames is None:
-        args.frames = 3 if args.quick else (40 if args.lab == "lab1_camera" else 15)
+        args.frames = 3 if args.quick else (31 if args.lab == "lab1_camera" else 11)
     if args.rounds is None:
         args.rounds = 1 if args.quick else 3
     out_dir = args.out_dir or (os.path.join(args.build, "tradeoff_quick") if args.quick
                                else os.path.join(ROOT, "docs", "tradeoffs"))
     os.makedirs(out_dir, exist_ok=True)
 
+    res = "320x180" if args.quick else "1280x720"
+    note = (f"{res}, LP_NUM_THREADS={args.threads}, {args.rounds} interleaved rounds x {args.frames} frames on a "
+            f"shared 2-core machine; bars: round-to-round spread")
+    if args.replot:
+        csv_path = os.path.join(out_dir, args.lab + ".csv")
+        plot(args.lab, replot(args.lab, csv_path, None, args.quick), os.path.join(out_dir, args.lab + ".png"), note)
+        return
     wall = time.time()
     configs, sweep, _ = measure(args.lab, args)
     csv_path = os.path.join(out_dir, args.lab + ".csv")
     write_csv(args.lab, configs, csv_path, args.rounds)
-    res = "320x180" if args.quick else "1280x720"
-    plot(args.lab, configs, os.path.join(out_dir, args.lab + ".png"),
-         f"{res}, LP_NUM_THREADS={args.threads}, median of {args.rounds} rounds x {args.frames} frames; "
-         f"bars: round-to-round spread")
+    plot(args.lab, configs, os.path.join(out_dir, args.lab + ".png"), note)
     if not args.quick and not args.no_heatmaps:
         heatmaps(args.lab, sweep, out_dir)
     print(f"tradeoff: wrote {csv_path} and {args.lab}.png in {time.time() - wall:.0f} s")
     for c in configs:
         if c["default"]:
-            print(f"  default {c['group']} | {c['config']}: {c['median_ms']:.2f} ms (spread {c['spread_ms']:.2f}), "
+            print(f"  default {c['group']} | {c['config']}: cpu {c['cpu_ms']:.2f} ms/frame (spread {c['cpu_spread_ms']:.2f}), "
+                  f"wall median {c['median_ms']:.2f} ms (spread {c['spread_ms']:.2f}, best {c['best_ms']:.2f}), "
                   f"mean_abs {c['errors']['mean_abs']:.4f}, on front: {c['on_front'] or 'n/a'}"
                   + (f", dominated beyond noise by {c['dominated_by']}" if c["dominated_by"] else ""))
     shutil.rmtree(sweep.tmp, ignore_errors=True)

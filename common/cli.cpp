@@ -30,7 +30,7 @@ const std::vector<OptionSpec>& option_specs() {
     static const std::vector<OptionSpec> specs = {
         {"scene", true},  {"headless", false}, {"out", true},       {"width", true},
         {"height", true}, {"frames", true},    {"validate", false}, {"benchmark", true},
-        {"help", false},
+        {"window", false},  {"help", false},
     };
     return specs;
 }
@@ -72,6 +72,7 @@ Options parse_command_line(int argc, const char* const* argv, const std::string&
             return o;
         }
 
+    bool headless_asked = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg.size() > 1 && arg[0] == '-' && arg[1] != '-')
@@ -107,6 +108,7 @@ Options parse_command_line(int argc, const char* const* argv, const std::string&
             o.scene = value;
         } else if (name == "headless") {
             o.headless = true;
+            headless_asked = true;
         } else if (name == "out") {
             if (lower(value).size() < 5 || lower(value).compare(value.size() - 4, 4, ".png") != 0)
                 throw CliError(option + ": the file name must end in .png, got '" + value + "'");
@@ -122,8 +124,17 @@ Options parse_command_line(int argc, const char* const* argv, const std::string&
             o.validate = true;
         } else if (name == "benchmark") {
             o.benchmark = static_cast<int>(parse_integer(option, value, 1, INT_MAX));
-            o.headless = true;  // benchmarks measure rendering, not the window system
+        } else if (name == "window") {
+            o.window = true;
         }
+    }
+    // A benchmark is headless (rendering alone) unless --window asks for the whole window path.
+    if (o.benchmark > 0 && !o.window) o.headless = true;
+    if (o.window) {
+        if (headless_asked || !o.out.empty())
+            throw CliError(std::string("--window cannot be combined with ") + (headless_asked ? "--headless" : "--out") +
+                           " (a window renders on screen, not offscreen)");
+        o.headless = false;
     }
     return o;
 }
@@ -142,7 +153,8 @@ std::string usage(const std::string& program) {
            "                    (default: until the window closes; headless: 1)\n"
            "  --validate        enable the Khronos validation layer; any message fails the run\n"
            "  --benchmark N     render N >= 1 headless frames and print frame-time statistics\n"
-           "                    (implies --headless)\n"
+           "                    (implies --headless, unless --window)\n"
+           "  --window          with --benchmark: measure in a window (rendering + UI + present)\n"
            "  -h, --help        show this help and exit\n"
            "\n"
            "A bad command line prints one error line and exits with code 2.\n";

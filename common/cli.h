@@ -15,7 +15,8 @@ struct Options {
     uint32_t height = 720;
     int frames = 0;            // frames to render; 0 = until the window closes (headless: 1)
     bool validate = false;     // Khronos validation; any message makes the run fail
-    int benchmark = 0;         // render N headless frames and print frame-time statistics
+    int benchmark = 0;         // render N frames and print frame-time statistics (headless unless --window)
+    bool window = false;       // --window: a benchmark in a window (measures the present path too)
     bool help = false;
 };
 

@@ -1,9 +1,13 @@
 #include "imgui_layer.h"
 
+#include "window_target.h"
+
+#include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -57,6 +61,11 @@ ImGuiLayer::ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass
     ImGui::GetIO().IniFilename = nullptr;  // never write imgui.ini into the working directory
     ImGui::StyleColorsDark();
     ImGui_ImplGlfw_InitForVulkan(window, true);  // chains to the window's own callbacks
+    // GLFW 3.3 has these standard cursors; ImGui's other shapes fall back to the arrow.
+    cursors_[ImGuiMouseCursor_TextInput] = glfwCreateStandardCursor(GLFW_IBEAM_CURSOR);
+    cursors_[ImGuiMouseCursor_ResizeNS] = glfwCreateStandardCursor(GLFW_VRESIZE_CURSOR);
+    cursors_[ImGuiMouseCursor_ResizeEW] = glfwCreateStandardCursor(GLFW_HRESIZE_CURSOR);
+    cursors_[ImGuiMouseCursor_Hand] = glfwCreateStandardCursor(GLFW_HAND_CURSOR);
 
     ImGui_ImplVulkan_InitInfo info{};
     info.Instance = vk.instance();
@@ -84,12 +93,47 @@ ImGuiLayer::~ImGuiLayer() {
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+    for (GLFWcursor* cursor : cursors_)
+        if (cursor) glfwDestroyCursor(cursor);
 }
 
-void ImGuiLayer::new_frame() {
+void ImGuiLayer::new_frame(Window& window, float dt_seconds) {
     ImGui_ImplVulkan_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
+    platform_new_frame(window, dt_seconds);
     ImGui::NewFrame();
+}
+
+// What ImGui_ImplGlfw_NewFrame() does, from the state the window's callbacks keep: the backend's
+// own version asks GLFW for the window size (twice), the focus and the cursor every frame, four
+// round trips to the X server that each wait for the last frame's image to be taken in. Keys,
+// characters and the wheel still reach ImGui through the backend's callbacks.
+void ImGuiLayer::platform_new_frame(Window& window, float dt_seconds) {
+    const Window::Input& in = window.input();
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(float(in.width), float(in.height));
+    if (in.width > 0 && in.height > 0)
+        io.DisplayFramebufferScale = ImVec2(float(in.framebuffer_width) / float(in.width),
+                                            float(in.framebuffer_height) / float(in.height));
+    io.DeltaTime = dt_seconds > 0.0f ? dt_seconds : 1e-4f;  // ImGui requires a positive step
+
+    // A click shorter than a frame still counts as held for one frame (or ImGui would miss it).
+    const std::array<bool, 8> clicked = window.take_clicks();
+    for (size_t i = 0; i < IM_ARRAYSIZE(io.MouseDown) && i < clicked.size(); ++i)
+        io.MouseDown[i] = clicked[i] || in.mouse_down[i];
+    io.MousePos = in.focused || in.cursor_inside ? ImVec2(float(in.cursor.x), float(in.cursor.y))
+                                                 : ImVec2(-FLT_MAX, -FLT_MAX);
+
+    // The cursor shape ImGui wants (text beam over a field, ...), sent only when it changes.
+    const int wanted = io.MouseDrawCursor ? ImGuiMouseCursor_None : ImGui::GetMouseCursor();
+    if (wanted != shown_cursor_) {
+        shown_cursor_ = wanted;
+        if (wanted == ImGuiMouseCursor_None) {
+            glfwSetInputMode(window.handle(), GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
+        } else {
+            glfwSetCursor(window.handle(), wanted >= 0 && size_t(wanted) < cursors_.size() ? cursors_[size_t(wanted)] : nullptr);
+            glfwSetInputMode(window.handle(), GLFW_CURSOR, GLFW_CURSOR_NORMAL);
+        }
+    }
 }
 
 void ImGuiLayer::render(VkCommandBuffer cmd) {
@@ -113,5 +157,6 @@ void ImGuiLayer::render(VkCommandBuffer cmd) {
 
 bool ImGuiLayer::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
 bool ImGuiLayer::wants_keyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
+bool ImGuiLayer::wants_text_input() const { return ImGui::GetIO().WantTextInput; }
 
 }  // namespace lab

@@ -1,6 +1,7 @@
 #include "lab_app.h"
 
 #include "headless_target.h"
+#include "redraw_policy.h"
 #include "window_target.h"
 
 #include <GLFW/glfw3.h>
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <utility>
 
 namespace lab {
 
@@ -95,13 +97,12 @@ bool LabApp::key_pressed(int glfw_key) {
 }
 
 void LabApp::poll_input() {
-    glfwPollEvents();
-    double x = 0.0, y = 0.0;
-    glfwGetCursorPos(window_->handle(), &x, &y);
-    const glm::dvec2 cursor(x, y);
+    // The cursor as the window's callbacks left it: asking GLFW (glfwGetCursorPos) would be a
+    // round trip to the X server every frame.
+    const glm::dvec2 cursor = window_->input().cursor;
     const bool ui_has_mouse = ui_ && ui_->wants_mouse();
     mouse_.delta = have_cursor_ && !ui_has_mouse ? glm::vec2(cursor - last_cursor_) : glm::vec2(0.0f);
-    mouse_.left_down = !ui_has_mouse && glfwGetMouseButton(window_->handle(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    mouse_.left_down = !ui_has_mouse && window_->input().mouse_down[GLFW_MOUSE_BUTTON_LEFT];
     const float scroll = window_->take_scroll();
     mouse_.scroll = ui_has_mouse ? 0.0f : scroll;
     last_cursor_ = cursor;
@@ -133,33 +134,103 @@ void LabApp::run(const Callbacks& callbacks) {
 }
 
 void LabApp::run_window(const Callbacks& cb) {
+    // --frames and --benchmark measure: every frame is drawn. Otherwise the window draws on
+    // demand (redraw_policy.h) and sleeps while nothing changes.
+    const bool measured = options_.frames > 0 || options_.benchmark > 0;
+    const int warmup = options_.benchmark > 0 ? 3 : 0;  // as headless: pipeline compilation, caches
+    const int to_draw = options_.benchmark > 0 ? warmup + options_.benchmark + 1 : options_.frames;
+    std::vector<double> frame_ms;
+    if (const char* log = std::getenv("LAB_TEST_FRAME_LOG"); log && *log) frame_log_ = std::fopen(log, "w");
+
+    RedrawPolicy policy;
     const auto start = Clock::now();
-    auto last = start;
+    auto last_update = start, last_ui = start, last_done = start;
     int frame_count = 0;
     while (!window_->should_close()) {
+        // Sleep until an event (or the periodic wake) when there is nothing to draw.
+        const bool slept = !measured && !continuous_rendering_ && policy.may_sleep();
+        if (slept)
+            window_->wait_events(RedrawPolicy::kWakeSeconds);
+        else
+            glfwPollEvents();
+        const auto woke = Clock::now();
         poll_input();
-        const auto now = Clock::now();
-        const float dt = std::chrono::duration<float>(now - last).count();
-        last = now;
-        // Exponential moving average: a steady number for the UI.
-        average_frame_ms_ = average_frame_ms_ == 0.0f ? dt * 1000.0f : 0.95f * average_frame_ms_ + 0.05f * dt * 1000.0f;
-
+        // Held keys move by real time. After a sleep nothing was held (or we would not have
+        // slept): the time asleep is not movement time.
+        if (slept) last_update = woke;
+        const float dt = std::chrono::duration<float>(woke - last_update).count();
+        last_update = woke;
         cb.update(dt);
-        Frame frame;
-        if (!target_->begin_frame(cb.background(), frame)) continue;
-        if (options_.frames <= 0) ++frame_count;
-        ui_->new_frame();
-        cb.ui();
-        cb.record(frame);
-        ui_->render(frame.cmd);
-        target_->end_frame();
-        frame_submitted();
-        if (options_.frames > 0 && ++frame_count >= options_.frames) break;  // --frames N: screenshots, tests
+
+        RedrawPolicy::Inputs in;
+        in.event_count = window_->event_count();
+        in.input_held = window_->input_held();
+        in.requested = std::exchange(redraw_requested_, false) || (ui_ && ui_->wants_text_input() && slept);
+        in.continuous = measured || continuous_rendering_;
+        if (!policy.should_draw(in)) continue;
+
+        const float ui_dt = std::chrono::duration<float>(woke - last_ui).count();
+        if (!draw_window_frame(cb, ui_dt)) continue;
+        last_ui = woke;
+        ++frame_count;
+        // The frame's cost, from waking up to presenting (not the time spent asleep before it).
+        const float work_ms = float(ms_since(woke));
+        average_frame_ms_ = average_frame_ms_ == 0.0f ? work_ms : 0.95f * average_frame_ms_ + 0.05f * work_ms;
+        if (frame_log_) std::fprintf(frame_log_, "%d %.3f\n", frame_count, ms_since(start) / 1000.0), std::fflush(frame_log_);
+
+        if (options_.benchmark > 0 && frame_count > 1) {
+            // As headless: the interval between two consecutive frames finishing on the GPU.
+            static_cast<WindowTarget&>(*target_).wait_for_slot((last_slot_ + 1) % RenderTarget::kFramesInFlight);
+            const auto done = Clock::now();
+            if (frame_count - 1 > warmup) frame_ms.push_back(std::chrono::duration<double, std::milli>(done - last_done).count());
+            last_done = done;
+        }
+        if (measured && frame_count >= to_draw) break;  // --frames N: screenshots, tests
     }
     wait_idle();
+    if (frame_log_) std::fclose(std::exchange(frame_log_, nullptr));
+    if (options_.benchmark > 0 && !frame_ms.empty()) {
+        print_benchmark("window", frame_ms);
+        return;
+    }
     const double seconds = ms_since(start) / 1000.0;
     std::printf("%s: %d frames in %.1f s (%.1f ms/frame average)\n", info_.name.c_str(), frame_count, seconds,
                 frame_count ? 1000.0 * seconds / frame_count : 0.0);
+}
+
+bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
+    Frame frame;
+    if (!target_->begin_frame(cb.background(), frame)) return false;
+    ui_->new_frame(*window_, ui_dt);
+    cb.ui();
+    cb.record(frame);
+    ui_->render(frame.cmd);
+    target_->end_frame();
+    frame_submitted();
+    last_slot_ = frame.slot;
+    return true;
+}
+
+void LabApp::frame_stats_ui() {
+    const bool continuous = continuous_rendering_ || options_.frames > 0 || options_.benchmark > 0;
+    if (continuous)
+        ImGui::Text("%.2f ms/frame (%.0f fps)", average_frame_ms_, 1000.0 / std::max(average_frame_ms_, 1e-3f));
+    else
+        ImGui::Text("%.2f ms/frame, drawn on demand", average_frame_ms_);
+    ImGui::Checkbox("continuous rendering", &continuous_rendering_);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Draw frames all the time, not only when something changes\n(uses a CPU core while idle)");
+}
+
+void LabApp::print_benchmark(const char* mode, const std::vector<double>& frame_ms) const {
+    double mean = 0.0;
+    for (double v : frame_ms) mean += v / double(frame_ms.size());
+    // One machine-readable line (key=value pairs) for scripts and bench/.
+    std::printf("benchmark lab=%s width=%u height=%u frames=%zu min_ms=%.3f median_ms=%.3f p95_ms=%.3f mean_ms=%.3f%s%s\n",
+                info_.name.c_str(), target_->extent().width, target_->extent().height, frame_ms.size(),
+                *std::min_element(frame_ms.begin(), frame_ms.end()), percentile(frame_ms, 50.0),
+                percentile(frame_ms, 95.0), mean, mode ? " target=" : "", mode ? mode : "");
+    std::fflush(stdout);
 }
 
 void LabApp::run_headless(const Callbacks& cb) {
@@ -193,13 +264,7 @@ void LabApp::run_headless(const Callbacks& cb) {
     const double total_ms = ms_since(start);
 
     if (benchmark) {
-        double mean = 0.0;
-        for (double v : frame_ms) mean += v / double(frame_ms.size());
-        // One machine-readable line (key=value pairs) for scripts and bench/.
-        std::printf("benchmark lab=%s width=%u height=%u frames=%d min_ms=%.3f median_ms=%.3f p95_ms=%.3f mean_ms=%.3f\n",
-                    info_.name.c_str(), options_.width, options_.height, frames,
-                    *std::min_element(frame_ms.begin(), frame_ms.end()), percentile(frame_ms, 50.0),
-                    percentile(frame_ms, 95.0), mean);
+        print_benchmark(nullptr, frame_ms);
     } else {
         std::printf("%s: rendered %d frame%s at %ux%u in %.1f ms\n", info_.name.c_str(), frames, frames == 1 ? "" : "s",
                     options_.width, options_.height, total_ms);

@@ -15,6 +15,7 @@
 #include "scene.h"
 #include "vk_context.h"
 
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
@@ -59,6 +60,11 @@ public:
     bool key_pressed(int glfw_key);  // went down since the last frame
     const MouseInput& mouse() const { return mouse_; }
     float average_frame_ms() const { return average_frame_ms_; }
+    // The frame time line and the "continuous rendering" checkbox, for the lab's panel.
+    void frame_stats_ui();
+    // Something the picture depends on changed outside the input (a scene reload, an animation):
+    // draw a frame even though no event arrived (a window draws only on demand, see redraw_policy.h).
+    void request_redraw() { redraw_requested_ = true; }
     // Waits until the GPU is idle (before destroying resources in-flight frames may still use).
     void wait_idle() const;
 
@@ -69,6 +75,8 @@ private:
     void poll_input();
     void run_window(const Callbacks& callbacks);
     void run_headless(const Callbacks& callbacks);
+    bool draw_window_frame(const Callbacks& callbacks, float ui_dt);  // false: no image this time
+    void print_benchmark(const char* mode, const std::vector<double>& frame_ms) const;
     void frame_submitted();  // counts submits; the test hook throws after the Nth
 
     LabInfo info_;
@@ -83,6 +91,10 @@ private:
     bool have_cursor_ = false;
     std::vector<int> keys_down_last_frame_;
     float average_frame_ms_ = 0.0f;
+    bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
+    bool redraw_requested_ = false;
+    uint32_t last_slot_ = 0;             // frame slot of the last window frame drawn
+    std::FILE* frame_log_ = nullptr;     // test hook LAB_TEST_FRAME_LOG=file: one line per frame drawn
     int fail_after_submit_ = 0;  // test hook LAB_TEST_FAIL_AFTER_SUBMIT=N (0: off)
     int submitted_ = 0;          // frames submitted so far
 };

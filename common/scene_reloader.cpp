@@ -33,7 +33,7 @@ bool SceneReloader::poll(bool force, const std::function<void(const Scene&)>& ap
     } catch (const std::exception& e) {
         error_ = e.what();
         std::fprintf(stderr, "reload failed, keeping the last good scene: %s\n", e.what());
-        return false;
+        return true;  // the panel shows the error
     }
 }
 

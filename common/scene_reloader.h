@@ -19,7 +19,8 @@ public:
     SceneReloader(std::string file, Scene initial);
 
     // `apply` builds whatever depends on the scene (the renderer); when it
-    // throws, the new scene is dropped. Returns true when a new scene was applied.
+    // throws, the new scene is dropped. Returns true when something to show changed:
+    // a new scene was applied, or a reload failed (error() has the new message).
     bool poll(bool force, const std::function<void(const Scene&)>& apply);
 
     const Scene& scene() const { return scene_; }

@@ -56,12 +56,10 @@ Window::Window(const std::string& title, uint32_t width, uint32_t height) {
         throw VulkanError("GLFW: cannot create a " + std::to_string(width) + "x" + std::to_string(height) + " window");
     }
     glfwSetWindowUserPointer(window_, this);
-    glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
-        static_cast<Window*>(glfwGetWindowUserPointer(w))->resized_ = true;
-    });
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += float(dy);
     });
+    watch_input();
 }
 
 Window::~Window() {
@@ -73,6 +71,85 @@ void Window::show() { glfwShowWindow(window_); }
 bool Window::should_close() const { return glfwWindowShouldClose(window_); }
 bool Window::take_resized() { return std::exchange(resized_, false); }
 float Window::take_scroll() { return std::exchange(scroll_, 0.0f); }
+
+namespace {
+Window& owner(GLFWwindow* w) { return *static_cast<Window*>(glfwGetWindowUserPointer(w)); }
+}  // namespace
+
+void Window::watch_input() {
+    // One round trip each, once: from here on the callbacks keep these current.
+    glfwGetWindowSize(window_, &input_.width, &input_.height);
+    glfwGetFramebufferSize(window_, &input_.framebuffer_width, &input_.framebuffer_height);
+    glfwGetCursorPos(window_, &input_.cursor.x, &input_.cursor.y);
+    input_.focused = glfwGetWindowAttrib(window_, GLFW_FOCUSED) != 0;
+    input_.cursor_inside = glfwGetWindowAttrib(window_, GLFW_HOVERED) != 0;
+
+    // GLFW calls back with the window; the Window is its user pointer. (ImGui's backend, set up
+    // later, installs its own callbacks for keys, buttons, wheel, focus and cursor enter, and
+    // calls these from them.)
+    glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int width, int height) {
+        Window& me = owner(w);
+        me.resized_ = true;
+        me.input_.framebuffer_width = width;
+        me.input_.framebuffer_height = height;
+        ++me.events_;
+    });
+    glfwSetWindowSizeCallback(window_, [](GLFWwindow* w, int width, int height) {
+        Window& me = owner(w);
+        me.input_.width = width;
+        me.input_.height = height;
+        ++me.events_;
+    });
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
+        Window& me = owner(w);
+        me.input_.cursor = {x, y};
+        ++me.events_;
+    });
+    glfwSetCursorEnterCallback(window_, [](GLFWwindow* w, int entered) {
+        Window& me = owner(w);
+        me.input_.cursor_inside = entered != 0;
+        ++me.events_;
+    });
+    glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int focused) {
+        Window& me = owner(w);
+        me.input_.focused = focused != 0;
+        ++me.events_;
+    });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
+        Window& me = owner(w);
+        if (button >= 0 && button < int(me.input_.mouse_down.size())) {
+            me.input_.mouse_down[size_t(button)] = action == GLFW_PRESS;
+            if (action == GLFW_PRESS) me.input_.mouse_clicked[size_t(button)] = true;
+        }
+        ++me.events_;
+    });
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+        Window& me = owner(w);
+        if (key >= 0 && key < int(me.key_held_.size()) && action != GLFW_REPEAT) {
+            bool& held = me.key_held_[size_t(key)];
+            if (held != (action == GLFW_PRESS)) me.input_.keys_down += held ? -1 : 1;
+            held = action == GLFW_PRESS;
+        }
+        ++me.events_;
+    });
+    glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned int) {
+        ++owner(w).events_;
+    });
+    // Uncovered, restored or maximized: the window needs its picture again.
+    glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { ++owner(w).events_; });
+    glfwSetWindowIconifyCallback(window_, [](GLFWwindow* w, int) { ++owner(w).events_; });
+}
+
+std::array<bool, 8> Window::take_clicks() { return std::exchange(input_.mouse_clicked, {}); }
+
+bool Window::input_held() const {
+    if (input_.keys_down > 0) return true;
+    for (bool down : input_.mouse_down)
+        if (down) return true;
+    return false;
+}
+
+void Window::wait_events(double timeout_seconds) const { glfwWaitEventsTimeout(timeout_seconds); }
 
 // ---------------------------------------------------------------- WindowTarget
 
@@ -216,8 +293,7 @@ namespace {
 bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     if (window_.take_resized()) mark_stale(false);
     // A minimized window has a 0×0 framebuffer: draw nothing, wait for events.
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_.handle(), &w, &h);
+    const int w = window_.input().framebuffer_width, h = window_.input().framebuffer_height;  // no round trip
     if (w == 0 || h == 0 || (stale_ && !recreate_swapchain())) {
         glfwWaitEventsTimeout(0.1);
         return false;

@@ -3,6 +3,8 @@
 
 #include "render_target.h"
 
+#include <array>
+#include <cstdint>
 #include <deque>
 #include <string>
 #include <vector>
@@ -27,10 +29,38 @@ public:
     // Mouse-wheel steps since the last call.
     float take_scroll();
 
+    // ---- Input as the event callbacks left it, for the frame loop and the UI.
+    // Every glfwGet* of window state (cursor, sizes, focus) is a round trip to the X server,
+    // which first finishes everything queued before it (the last frame's whole image): the
+    // loop asks these instead, kept up to date by callbacks, and never waits on the server.
+    struct Input {
+        glm::dvec2 cursor{0.0};      // pixels from the window's top-left corner
+        bool cursor_inside = false;
+        bool focused = false;
+        int width = 0, height = 0;                         // window size in screen coordinates
+        int framebuffer_width = 0, framebuffer_height = 0;  // in pixels
+        std::array<bool, 8> mouse_down{};     // GLFW_MOUSE_BUTTON_1..8
+        std::array<bool, 8> mouse_clicked{};  // went down since the last take_clicks()
+        int keys_down = 0;                    // keys held right now
+    };
+    const Input& input() const { return input_; }
+    std::array<bool, 8> take_clicks();  // a press and release between two frames still counts
+    // Events (input, resize, expose, focus) seen so far: the frame loop draws when it changes.
+    uint64_t event_count() const { return events_; }
+    // A key or mouse button is held: the picture may change every frame (moving, dragging).
+    bool input_held() const;
+    // Sleeps until an event arrives or `timeout_seconds` pass (render on demand).
+    void wait_events(double timeout_seconds) const;
+
 private:
+    void watch_input();  // installs the callbacks that keep input_ and events_ current
+
     GLFWwindow* window_ = nullptr;
     bool resized_ = false;
     float scroll_ = 0.0f;
+    Input input_;
+    std::array<bool, 512> key_held_{};  // by GLFW key code (GLFW_KEY_LAST = 348)
+    uint64_t events_ = 0;
 };
 
 class WindowTarget : public RenderTarget {
@@ -43,6 +73,9 @@ public:
     bool begin_frame(const glm::vec3& clear_linear, Frame& frame) override;
     void end_frame() override;
     uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
+    // Blocks until the last frame drawn in frame slot `slot` (Frame::slot) has finished: window
+    // benchmarks time frames the way headless ones do.
+    void wait_for_slot(uint32_t slot) const { slots_.wait(slot); }
 
 private:
     bool create_swapchain();  // false (and nothing changed) while the surface is 0×0

@@ -17,6 +17,7 @@ packages=(
   libgtest-dev
   assimp-testmodels            # real-world OBJ files for the mesh loader tests
   xvfb xauth                   # window tests run under a virtual X server
+  xdotool libx11-dev           # the on-demand window test: pointer and keys, closing the window
   python3-matplotlib python3-numpy  # bench/tradeoff.py: time-against-error plots
 )
 

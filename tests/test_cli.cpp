@@ -93,6 +93,17 @@ TEST(Cli, OutAndBenchmarkImplyHeadless) {
     EXPECT_FALSE(parse({"--frames", "10"}).headless);
 }
 
+TEST(Cli, WindowBenchmark) {
+    const lab::Options o = parse({"--benchmark", "50", "--window"});
+    EXPECT_EQ(o.benchmark, 50);
+    EXPECT_TRUE(o.window);
+    EXPECT_FALSE(o.headless);
+    EXPECT_FALSE(parse({"--window", "--benchmark=5"}).headless);  // in either order
+    EXPECT_CONTAINS(error_of({"--benchmark", "5", "--window", "--headless"}), "--window cannot be combined with --headless");
+    EXPECT_CONTAINS(error_of({"--window", "--out", "a.png"}), "--window cannot be combined with --out");
+    EXPECT_CONTAINS(error_of({"--window=1"}), "--window takes no value");
+}
+
 TEST(Cli, LaterOptionsOverrideEarlierOnes) {
     EXPECT_EQ(parse({"--width", "100", "--width", "200"}).width, 200u);
 }
@@ -156,7 +167,7 @@ TEST(Cli, UsageListsEveryOptionAndDefault) {
     const std::string text = lab::usage("lab1_camera");
     EXPECT_CONTAINS(text, "usage: lab1_camera");
     for (const char* part : {"--scene", "--headless", "--out", "--width", "--height", "--frames", "--validate",
-                             "--benchmark", "--help", "-h", "1280", "720", "16384", "implies --headless"})
+                             "--benchmark", "--window", "--help", "-h", "1280", "720", "16384", "implies --headless"})
         EXPECT_CONTAINS(text, part);
     EXPECT_GT(std::count(text.begin(), text.end(), '\n'), 10);
 }

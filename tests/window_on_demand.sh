@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# window_on_demand.sh LAB_EXE CLOSE_TOOL — render on demand in a real window (run under xvfb-run).
+#
+# The lab runs with --validate and LAB_TEST_FRAME_LOG (one line per frame drawn). Checks:
+#   1. an idle window stops drawing: at most 2 frames in an idle second;
+#   2. input wakes it: pointer motion draws new frames;
+#   3. a held key draws continuously (the camera moves every frame), and it idles again after;
+#   4. closing the window ends the run with exit code 0 (no validation message).
+set -euo pipefail
+exe="$1"
+close_tool="$2"
+name="$(basename "$exe")"
+dir="$(mktemp -d)"
+pid=""
+cleanup() {
+  [ -n "$pid" ] && kill "$pid" 2>/dev/null || true
+  rm -rf "$dir"
+}
+trap cleanup EXIT
+log="$dir/frames.txt"
+LAB_TEST_FRAME_LOG="$log" "$exe" --validate >"$dir/out.txt" 2>&1 &
+pid=$!
+
+frames() { if [ -f "$log" ]; then wc -l <"$log"; else echo 0; fi; }
+fail() {
+  echo "FAIL: $*"
+  echo "--- $name output:"
+  cat "$dir/out.txt"
+  exit 1
+}
+# Waits (up to $2 s) until the frame count exceeds $1.
+wait_frames_above() {
+  local n="$1" tries=$(( $2 * 20 ))
+  while (( tries-- > 0 )); do
+    (( $(frames) > n )) && return 0
+    kill -0 "$pid" 2>/dev/null || fail "$name exited early"
+    sleep 0.05
+  done
+  return 1
+}
+# Waits (up to 20 s) until no frame was drawn for a whole second: the window has settled.
+wait_idle() {
+  local before after tries=20
+  while (( tries-- > 0 )); do
+    before=$(frames); sleep 1; after=$(frames)
+    (( after == before )) && return 0
+  done
+  fail "the window never stopped drawing ($(frames) frames so far)"
+}
+
+wait_frames_above 0 60 || fail "no frame drawn within 60 s"
+wid=""
+for _ in $(seq 100); do
+  wid="$(xdotool search --name "^${name}\$" 2>/dev/null | head -1 || true)"
+  [ -n "$wid" ] && break
+  sleep 0.1
+done
+[ -n "$wid" ] || fail "no window named $name"
+
+# 1. Idle: after the start-up frames, nothing is drawn.
+wait_idle
+a=$(frames); sleep 1; b=$(frames)
+echo "idle second: $((b - a)) frames (after $a start-up frames)"
+(( b - a <= 2 )) || fail "an idle window drew $((b - a)) frames in one second"
+
+# 2. Pointer motion wakes it (and it settles again: a few frames for the UI).
+xdotool mousemove --window "$wid" 900 500
+wait_frames_above "$b" 5 || fail "pointer motion drew no frame within 5 s"
+wait_idle
+c=$(frames)
+echo "pointer motion: $((c - b)) frames"
+
+# 3. A held key (W: forward) draws every frame while held, counted over 2 s from 0.7 s after the
+#    press (the press alone is settled by then: without continuous drawing this counts 0); then
+#    the window idles again.
+xdotool windowfocus "$wid" 2>/dev/null || true
+sleep 0.3
+xdotool keydown w
+sleep 0.7
+d=$(frames); sleep 2; e=$(frames)
+xdotool keyup w
+echo "key held: $((e - d)) frames in two seconds"
+(( e - d >= 3 )) || fail "a held key drew only $((e - d)) frames in two seconds"
+wait_idle
+f=$(frames); sleep 1; g=$(frames)
+(( g - f <= 2 )) || fail "after the key was released the window kept drawing ($((g - f)) frames in a second)"
+
+# 4. Close it like a window manager: the lab must exit 0 (validation clean).
+"$close_tool" "$wid"
+status=0
+wait "$pid" || status=$?
+pid=""
+[ "$status" -eq 0 ] || fail "$name exited with $status after the window was closed"
+echo "closed: exit 0, $(frames) frames in all"
