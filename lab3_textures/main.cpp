@@ -56,7 +56,7 @@ void update_camera(lab::LabApp& app, Camera& camera, const Controls& controls, f
 void camera_panel(lab::LabApp& app, Camera& camera, Controls& controls, const lab::SceneReloader& reloader) {
     ImGui::SetNextWindowSize(ImVec2(380.0f, 0.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Camera");
-    ImGui::Text("%.2f ms/frame (%.0f fps)", app.average_frame_ms(), 1000.0 / std::max(app.average_frame_ms(), 1e-3f));
+    app.frame_stats_ui();  // frame time, "continuous rendering" checkbox
     ImGui::TextDisabled("scene: %s (R reloads)", reloader.file().c_str());
     if (!reloader.error().empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
@@ -116,7 +116,8 @@ int main(int argc, char** argv) {
 
         app.run({
             [&](float dt) {
-                if (app.has_window()) reloader.poll(app.key_pressed(GLFW_KEY_R), rebuild);
+                // The window draws on demand: a reload (or its error) is something new to show.
+                if (app.has_window() && reloader.poll(app.key_pressed(GLFW_KEY_R), rebuild)) app.request_redraw();
                 update_camera(app, camera, controls, dt);
             },
             [&] {
