@@ -13,6 +13,7 @@
 #include "imgui_layer.h"
 #include "render_target.h"
 #include "scene.h"
+#include "status_file.h"
 #include "vk_context.h"
 
 #include <cstdio>
@@ -57,7 +58,7 @@ public:
 
     // Keyboard (false when headless or while an ImGui text field has focus).
     bool key_down(int glfw_key) const;
-    bool key_pressed(int glfw_key);  // went down since the last frame
+    bool key_pressed(int glfw_key);  // pressed since the last call (each press counts once)
     const MouseInput& mouse() const { return mouse_; }
     float average_frame_ms() const { return average_frame_ms_; }
     // The frame time line and the "continuous rendering" checkbox, for the lab's panel.
@@ -86,10 +87,10 @@ private:
     std::unique_ptr<RenderTarget> target_;
     HeadlessTarget* headless_ = nullptr;  // == target_ when headless
     std::unique_ptr<ImGuiLayer> ui_;
+    std::unique_ptr<StatusFile> status_;  // LAB_STATUS_FILE: a line per frame for bench/soak.sh
     MouseInput mouse_;
     glm::dvec2 last_cursor_{0.0};
     bool have_cursor_ = false;
-    std::vector<int> keys_down_last_frame_;
     float average_frame_ms_ = 0.0f;
     bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
     bool redraw_requested_ = false;

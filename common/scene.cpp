@@ -49,6 +49,7 @@ namespace fs = std::filesystem;
 constexpr double kMaxMagnitude = 1e6;  // every number: |v| <= 1e6 (also keeps floats finite)
 constexpr double kMinLength = 1e-6;    // directions: length >= 1e-6; scale: |component| >= 1e-6
 constexpr int kMaxTessellation = 1024;
+constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;  // a scene file is a few KiB; 16 MiB is absurd already
 
 // --- small string helpers ---------------------------------------------------
 
@@ -744,6 +745,12 @@ Scene parse_scene(const std::string& json_text, const std::string& file_label, c
 Scene load_scene(const std::string& file) {
     std::error_code ec;
     if (fs::is_directory(file, ec)) throw SceneError(file + ": cannot read scene: is a directory");
+    // Only a regular file of sane size: /dev/zero or a FIFO would be read forever.
+    if (fs::exists(file, ec) && !fs::is_regular_file(file, ec))
+        throw SceneError(file + ": cannot read scene: not a regular file");
+    if (const std::uintmax_t size = fs::file_size(file, ec); !ec && size > kMaxSceneBytes)
+        throw SceneError(file + ": cannot read scene: file too large (" + std::to_string(size) +
+                         " bytes; at most 16 MiB)");
     std::ifstream in(file, std::ios::binary);
     if (!in) throw SceneError(file + ": cannot read scene: " + std::generic_category().message(errno));
     std::ostringstream text;

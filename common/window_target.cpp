@@ -56,9 +56,10 @@ Window::Window(const std::string& title, uint32_t width, uint32_t height) {
         throw VulkanError("GLFW: cannot create a " + std::to_string(width) + "x" + std::to_string(height) + " window");
     }
     glfwSetWindowUserPointer(window_, this);
-    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
-        static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += float(dy);
-    });
+    // A key tapped between two frames is still down for one frame (glfwGetKey reports the press
+    // until it is read): a quick tap of W still moves a little. (Commands such as R and C count
+    // presses from the key callback instead, see take_key_press.)
+    glfwSetInputMode(window_, GLFW_STICKY_KEYS, GLFW_TRUE);
     watch_input();
 }
 
@@ -71,6 +72,11 @@ void Window::show() { glfwShowWindow(window_); }
 bool Window::should_close() const { return glfwWindowShouldClose(window_); }
 bool Window::take_resized() { return std::exchange(resized_, false); }
 float Window::take_scroll() { return std::exchange(scroll_, 0.0f); }
+bool Window::take_key_press(int glfw_key) {
+    if (glfw_key < 0 || glfw_key >= int(key_presses_.size()) || key_presses_[size_t(glfw_key)] == 0) return false;
+    --key_presses_[size_t(glfw_key)];
+    return true;
+}
 
 namespace {
 Window& owner(GLFWwindow* w) { return *static_cast<Window*>(glfwGetWindowUserPointer(w)); }
@@ -129,8 +135,14 @@ void Window::watch_input() {
             bool& held = me.key_held_[size_t(key)];
             if (held != (action == GLFW_PRESS)) me.input_.keys_down += held ? -1 : 1;
             held = action == GLFW_PRESS;
+            if (action == GLFW_PRESS) ++me.key_presses_[size_t(key)];
         }
         ++me.events_;
+    });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
+        Window& me = owner(w);
+        me.scroll_ += float(dy);
+        ++me.events_;  // a wheel step zooms: it needs a frame (bench/soak.sh found it drew none)
     });
     glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned int) {
         ++owner(w).events_;

@@ -28,6 +28,9 @@ public:
     bool take_resized();
     // Mouse-wheel steps since the last call.
     float take_scroll();
+    // Whether `glfw_key` was pressed since the last call for it (each press counts once, even
+    // when two presses, or a press and its release, arrive between two frames).
+    bool take_key_press(int glfw_key);
 
     // ---- Input as the event callbacks left it, for the frame loop and the UI.
     // Every glfwGet* of window state (cursor, sizes, focus) is a round trip to the X server,
@@ -60,6 +63,7 @@ private:
     float scroll_ = 0.0f;
     Input input_;
     std::array<bool, 512> key_held_{};  // by GLFW key code (GLFW_KEY_LAST = 348)
+    std::array<int, 512> key_presses_{};  // presses not taken yet (take_key_press)
     uint64_t events_ = 0;
 };
 

@@ -18,6 +18,7 @@ packages=(
   assimp-testmodels            # real-world OBJ files for the mesh loader tests
   xvfb xauth                   # window tests run under a virtual X server
   xdotool libx11-dev           # the on-demand window test: pointer and keys, closing the window
+  openbox x11-utils jq         # the window soak (bench/soak.sh): a window manager, xprop, scene edits
   python3-matplotlib python3-numpy  # bench/tradeoff.py: time-against-error plots
 )
 

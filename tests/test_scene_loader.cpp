@@ -15,6 +15,7 @@
 #include <fstream>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -318,6 +319,37 @@ TEST(SceneLoader, SceneFileThatIsAFolder) {
         FAIL() << "expected SceneError";
     } catch (const SceneError& e) {
         EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+    }
+}
+
+// Found while fuzzing (tests/fuzz/regressions.txt): --scene /dev/zero read forever.
+TEST(SceneLoader, SceneFileThatIsADeviceOrAFifo) {
+    for (const std::string file : {"/dev/zero", "/dev/urandom"}) {
+        if (!fs::exists(file)) continue;
+        try {
+            lab::load_scene(file);
+            FAIL() << "expected SceneError for " << file;
+        } catch (const SceneError& e) {
+            EXPECT_EQ(std::string(e.what()), file + ": cannot read scene: not a regular file");
+        }
+    }
+    TempDir dir;
+    const std::string fifo = (dir.path() / "pipe.json").string();
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_THROW(lab::load_scene(fifo), SceneError);  // would block in open() without the check
+}
+
+TEST(SceneLoader, HugeSceneFileIsRejectedUnread) {
+    TempDir dir;
+    const fs::path file = dir.path() / "huge.json";
+    std::ofstream(file) << kMinimal;
+    fs::resize_file(file, (16u << 20) + 1);  // sparse: costs no disk
+    try {
+        lab::load_scene(file.string());
+        FAIL() << "expected SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("file too large (16777217 bytes; at most 16 MiB)"), std::string::npos)
+            << e.what();
     }
 }
 

@@ -169,6 +169,21 @@ TEST(VulkanCorrectness, ImageLargerThanTheDeviceAllowsExitsWithCode2) {
     }
 }
 
+// In a window the same check runs before the (hidden) window is shown.
+TEST(VulkanCorrectness, WindowLargerThanTheDeviceAllowsExitsWithCode2) {
+    if (!has_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs xvfb)";
+    const uint32_t limit = largest_side_any_device_allows();
+    ASSERT_GE(limit, 4096u);
+    const std::string too_big = std::to_string(limit + 1);
+    const LabExe& lab = kLabs[0];
+    const RunResult run =
+        run_with_env(lab, "", "--validate --frames 1 --height 64 --width " + too_big, "too_big_window", true);
+    EXPECT_EQ(run.exit_code, 2) << run.log;
+    EXPECT_NE(run.log.find("--width " + too_big + ": the device allows at most " + std::to_string(limit)),
+              std::string::npos)
+        << run.log;
+}
+
 // The largest size the device allows is accepted (a one-pixel-high strip keeps it cheap).
 TEST(VulkanCorrectness, ImageAsWideAsTheDeviceAllowsRenders) {
     const uint32_t limit = largest_side_any_device_allows();

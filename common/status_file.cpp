@@ -1,0 +1,26 @@
+#include "status_file.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace lab {
+
+std::unique_ptr<StatusFile> StatusFile::from_environment() {
+    const char* path = std::getenv("LAB_STATUS_FILE");
+    if (!path || !*path) return nullptr;
+    return std::make_unique<StatusFile>(path);
+}
+
+StatusFile::StatusFile(std::string path) : path_(std::move(path)) {}
+
+void StatusFile::frame_drawn(uint32_t width, uint32_t height) {
+    ++frames_;
+    // A reader must never see half a line: write a temporary file, then rename it over the old one.
+    const std::string temporary = path_ + ".tmp";
+    if (std::FILE* f = std::fopen(temporary.c_str(), "w")) {
+        std::fprintf(f, "frame=%llu width=%u height=%u\n", static_cast<unsigned long long>(frames_), width, height);
+        if (std::fclose(f) == 0) std::rename(temporary.c_str(), path_.c_str());
+    }
+}
+
+}  // namespace lab
