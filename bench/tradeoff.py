@@ -598,7 +598,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="a few configurations at 320x180, then check the CSV")
     ap.add_argument("--build", default=os.environ.get("LAB_BUILD_DIR", os.path.join(ROOT, "build")))
     ap.add_argument("--out-dir", help="default: docs/tradeoffs (quick: BUILD/tradeoff_quick)")
-    ap.add_argument("--frames", type=int, help="benchmark frames per run (default: 31 lab 1, 11 lab 2; quick 3)")
+    ap.add_argument("--frames", type=int, help="benchmark frames per run (default: 61 lab 1, 21 lab 2; quick 3)")
     ap.add_argument("--rounds", type=int, help="interleaved rounds (default 3; quick 1)")
     ap.add_argument("--threads", type=int, default=2, help="LP_NUM_THREADS (default 2)")
     ap.add_argument("--no-heatmaps", action="store_true")
@@ -606,7 +606,7 @@ def main():
     args = ap.parse_args()
     args.build = os.path.abspath(args.build)
     if args.frames is None:
-        args.frames = 3 if args.quick else (31 if args.lab == "lab1_camera" else 11)
+        args.frames = 3 if args.quick else (61 if args.lab == "lab1_camera" else 21)
     if args.rounds is None:
         args.rounds = 1 if args.quick else 3
     out_dir = args.out_dir or (os.path.join(args.build, "tradeoff_quick") if args.quick

@@ -144,7 +144,6 @@ void LabApp::run_window(const Callbacks& cb) {
     const int warmup = options_.benchmark > 0 ? 3 : 0;  // as headless: pipeline compilation, caches
     const int to_draw = options_.benchmark > 0 ? warmup + options_.benchmark + 1 : options_.frames;
     std::vector<double> frame_ms;
-    if (const char* log = std::getenv("LAB_TEST_FRAME_LOG"); log && *log) frame_log_ = std::fopen(log, "w");
 
     RedrawPolicy policy;
     const auto start = Clock::now();
@@ -180,21 +179,24 @@ void LabApp::run_window(const Callbacks& cb) {
         // The frame's cost, from waking up to presenting (not the time spent asleep before it).
         const float work_ms = float(ms_since(woke));
         average_frame_ms_ = average_frame_ms_ == 0.0f ? work_ms : 0.95f * average_frame_ms_ + 0.05f * work_ms;
-        if (frame_log_) std::fprintf(frame_log_, "%d %.3f\n", frame_count, ms_since(start) / 1000.0), std::fflush(frame_log_);
 
         if (options_.benchmark > 0 && frame_count > 1) {
             // As headless: the interval between two consecutive frames finishing on the GPU.
             static_cast<WindowTarget&>(*target_).wait_for_slot((last_slot_ + 1) % RenderTarget::kFramesInFlight);
             const auto done = Clock::now();
             if (frame_count - 1 > warmup) frame_ms.push_back(std::chrono::duration<double, std::milli>(done - last_done).count());
+            if (frame_count - 1 == warmup) phase_ms_ = {};  // the breakdown leaves out the warm-up frames too
             last_done = done;
         }
         if (measured && frame_count >= to_draw) break;  // --frames N: screenshots, tests
     }
     wait_idle();
-    if (frame_log_) std::fclose(std::exchange(frame_log_, nullptr));
     if (options_.benchmark > 0 && !frame_ms.empty()) {
         print_benchmark("window", frame_ms);
+        const double n = double(frame_ms.size());
+        std::printf("breakdown lab=%s acquire_ms=%.3f ui_ms=%.3f record_ms=%.3f submit_present_ms=%.3f\n",
+                    info_.name.c_str(), phase_ms_[0] / n, phase_ms_[1] / n, phase_ms_[2] / n, phase_ms_[3] / n);
+        std::fflush(stdout);
         return;
     }
     const double seconds = ms_since(start) / 1000.0;
@@ -203,13 +205,28 @@ void LabApp::run_window(const Callbacks& cb) {
 }
 
 bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
+    // Where a window frame's time goes (printed by --benchmark N --window): waiting for a frame
+    // slot and a swapchain image; building and recording the UI; recording the lab's draws;
+    // submitting and presenting (with a CPU driver such as lavapipe, presenting also waits for
+    // the frame to be rendered and copies it to the window system).
+    auto mark = Clock::now();
+    const auto phase = [&](size_t i) {
+        const auto now = Clock::now();
+        phase_ms_[i] += std::chrono::duration<double, std::milli>(now - mark).count();
+        mark = now;
+    };
     Frame frame;
     if (!target_->begin_frame(cb.background(), frame)) return false;
+    phase(0);
     ui_->new_frame(*window_, ui_dt);
     cb.ui();
+    phase(1);
     cb.record(frame);
+    phase(2);
     ui_->render(frame.cmd);
+    phase(1);
     target_->end_frame();
+    phase(3);
     frame_submitted();
     last_slot_ = frame.slot;
     if (status_) status_->frame_drawn(frame.extent.width, frame.extent.height);

@@ -16,6 +16,7 @@
 #include "status_file.h"
 #include "vk_context.h"
 
+#include <array>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -95,7 +96,7 @@ private:
     bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
     bool redraw_requested_ = false;
     uint32_t last_slot_ = 0;             // frame slot of the last window frame drawn
-    std::FILE* frame_log_ = nullptr;     // test hook LAB_TEST_FRAME_LOG=file: one line per frame drawn
+    std::array<double, 4> phase_ms_{};   // window frames: acquire, UI, record, submit+present (ms)
     int fail_after_submit_ = 0;  // test hook LAB_TEST_FAIL_AFTER_SUBMIT=N (0: off)
     int submitted_ = 0;          // frames submitted so far
 };

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # window_on_demand.sh LAB_EXE CLOSE_TOOL — render on demand in a real window (run under xvfb-run).
 #
-# The lab runs with --validate and LAB_TEST_FRAME_LOG (one line per frame drawn). Checks:
+# The lab runs with --validate and LAB_STATUS_FILE ("frame=N ..." after each frame drawn,
+# common/status_file.h). Checks:
 #   1. an idle window stops drawing: at most 2 frames in an idle second;
 #   2. input wakes it: pointer motion draws new frames;
 #   3. a held key draws continuously (the camera moves every frame), and it idles again after;
@@ -17,11 +18,15 @@ cleanup() {
   rm -rf "$dir"
 }
 trap cleanup EXIT
-log="$dir/frames.txt"
-LAB_TEST_FRAME_LOG="$log" "$exe" --validate >"$dir/out.txt" 2>&1 &
+status="$dir/status.txt"
+LAB_STATUS_FILE="$status" "$exe" --validate >"$dir/out.txt" 2>&1 &
 pid=$!
 
-frames() { if [ -f "$log" ]; then wc -l <"$log"; else echo 0; fi; }
+frames() {  # frames drawn so far
+  local n=0
+  [ -f "$status" ] && n=$(sed -n 's/^frame=\([0-9]*\).*/\1/p' "$status")
+  echo "${n:-0}"
+}
 fail() {
   echo "FAIL: $*"
   echo "--- $name output:"
@@ -86,9 +91,10 @@ f=$(frames); sleep 1; g=$(frames)
 (( g - f <= 2 )) || fail "after the key was released the window kept drawing ($((g - f)) frames in a second)"
 
 # 4. Close it like a window manager: the lab must exit 0 (validation clean).
+total=$(frames)
 "$close_tool" "$wid"
 status=0
 wait "$pid" || status=$?
 pid=""
 [ "$status" -eq 0 ] || fail "$name exited with $status after the window was closed"
-echo "closed: exit 0, $(frames) frames in all"
+echo "closed: exit 0, $total frames in all"
