@@ -41,7 +41,7 @@ resolve_lab() {  # 1 | lab1 | lab1_camera → lab1_camera
 # Every marker of lab folder $1 (its folder and shader folder): name US file US line US hint US tests.
 markers_in() {
   local files
-  files=$({ [ -d "$1" ] && find "$1" -type f; [ -d "shaders/$1" ] && find "shaders/$1" -type f; } | sort)
+  files=$({ [ -d "$1" ] && find "$1" -type f ! -name README.md; [ -d "shaders/$1" ] && find "shaders/$1" -type f; } | sort)
   [ -n "$files" ] || return 0
   # shellcheck disable=SC2086
   awk '
@@ -116,6 +116,10 @@ prove() {
   mapfile -t all < <(exercises_of "$lab")
   if ((${#all[@]} == 0)); then
     echo "grader: $lab has no exercises (skipped)"
+    exit 77
+  fi
+  if grep -rq --exclude=README.md "// TODO EXERCISE" "$lab" "shaders/$lab" 2>/dev/null; then
+    echo "grader: this is a student copy of $lab (TODO EXERCISE markers): the grader's proof runs on the complete lab (skipped)"
     exit 77
   fi
   local log="$g/$lab.log"
