@@ -98,6 +98,10 @@ def truth_of(scene):
         obj.pop("segments", None)
         obj.pop("rings", None)
     t.get("lighting", {}).pop("shading", None)
+    for m in t.get("materials", {}).values():
+        # Lab 3: the filtering ground truth does not depend on the sampler's filter (only on its wrap).
+        for k in ("filter", "mipmaps", "anisotropy"):
+            m.get("sampler", {}).pop(k, None)
     return t
 
 
@@ -180,11 +184,50 @@ def lab2_configs(quick):
     return out
 
 
+# Lab 3: the sampler settings of bench/lab3_samplers.sh and the test
+# Lab3Filtering.AnisotropyLowersTheErrorAgainstTheGroundTruth, on the grazing floor.
+LAB3_SAMPLERS = [
+    ("nearest", {"filter": "nearest", "mipmaps": "none", "anisotropy": 1}),
+    ("linear, no mipmaps", {"filter": "linear", "mipmaps": "none", "anisotropy": 1}),
+    ("trilinear", {"filter": "linear", "mipmaps": "linear", "anisotropy": 1}),
+    ("trilinear + aniso 2", {"filter": "linear", "mipmaps": "linear", "anisotropy": 2}),
+    ("trilinear + aniso 4", {"filter": "linear", "mipmaps": "linear", "anisotropy": 4}),
+    ("trilinear + aniso 8", {"filter": "linear", "mipmaps": "linear", "anisotropy": 8}),
+    ("trilinear + aniso 16", {"filter": "linear", "mipmaps": "linear", "anisotropy": 16}),
+]
+
+
+def lab3_configs(quick):
+    """Sampler settings on scenes/lab3_floor.json (a tiled floor seen at a grazing angle), each
+    against the texture averaged over every pixel's footprint (lab_reference --supersample 16).
+    The default sampler (docs/scene-format.md) is seed 002's: linear, linear mips, anisotropy 16."""
+    base = load_scene("lab3_floor.json")
+    for m in base["materials"].values():
+        if "albedo_map" in m and not os.path.isabs(m["albedo_map"]):
+            m["albedo_map"] = os.path.join(ROOT, "scenes", m["albedo_map"])
+    names = ["nearest", "trilinear", "trilinear + aniso 16"] if quick else [n for n, _ in LAB3_SAMPLERS]
+    out = []
+    for name, sampler in LAB3_SAMPLERS:
+        if name not in names:
+            continue
+        scene = copy.deepcopy(base)
+        scene["materials"]["floor"]["sampler"] = dict(scene["materials"]["floor"]["sampler"], **sampler)
+        default = name == "trilinear + aniso 16"
+        out.append(config(name, "sampler", scene, knob=sampler["anisotropy"], default=default,
+                          seed="seed 002" if default else ""))
+    return out
+
+
 KNOBS = {
     "lab1_camera": {"configs": lab1_configs, "groups": {"tessellation": {"front": True}}},
     "lab2_lighting": {"configs": lab2_configs,
                       "groups": {"shading x tessellation": {"front": True}, "lighting model": {"front": False},
                                  "light count": {"front": False}}},
+    # truth: lab_reference's options for the truth; order: (better, worse) pairs of configurations
+    # whose error the quick check compares.
+    "lab3_textures": {"configs": lab3_configs, "groups": {"sampler": {"front": True, "label_all": True}},
+                      "truth": ["--supersample", "16"], "truth_name": "16x16 supersampled",
+                      "order": [("trilinear", "nearest")]},
 }
 
 
@@ -240,9 +283,9 @@ class Sweep:
         key = hashlib.sha1((json.dumps(t, sort_keys=True) + f"{w}x{h}s{supersample}").encode()).hexdigest()[:12]
         if key not in self.truths:
             path = os.path.join(self.tmp, f"truth_{key}.png")
+            truth_args = KNOBS[self.lab].get("truth", ["--ideal", "--supersample", str(supersample)])
             out = run([self.reference, "--lab", self.lab, "--scene", self.write_scene(t, "truth_" + key),
-                       "--width", str(w), "--height", str(h), "--ideal", "--supersample", str(supersample),
-                       "--out", path])
+                       "--width", str(w), "--height", str(h)] + truth_args + ["--out", path])
             self.truths[key] = path
             print(f"  truth {key}: {parse_fields(out, 'reference')['ms']} ms", flush=True)
         return self.truths[key]
@@ -358,7 +401,9 @@ def plot(lab, configs, path, title_note):
     panels = []
     for group in dict.fromkeys(c["group"] for c in configs):
         cs = [c for c in configs if c["group"] == group]
-        if KNOBS[lab]["groups"].get(group, {}).get("front"):
+        if KNOBS[lab]["groups"].get(group, {}).get("label_all"):
+            panels.append((group, cs, "labelled"))
+        elif KNOBS[lab]["groups"].get(group, {}).get("front"):
             panels.append((group, cs, "front"))
             if any(not c["series"] for c in cs):
                 panels.append((group, cs, "zoom"))
@@ -366,11 +411,14 @@ def plot(lab, configs, path, title_note):
             panels.append((group, cs, "count"))
         else:
             panels.append((group, cs, "bars"))
-    ratios = [1.5 if kind in ("front", "zoom") else 1.0 for _, _, kind in panels]
+    ratios = [1.5 if kind in ("front", "zoom", "labelled") else 1.0 for _, _, kind in panels]
     fig, axes = plt.subplots(1, len(panels), figsize=(5.6 * sum(ratios), 5.6), squeeze=False,
                              gridspec_kw={"width_ratios": ratios})
     for ax, (group, cs, kind) in zip(axes[0], panels):
-        {"front": plot_front, "zoom": plot_front, "count": plot_count, "bars": plot_bars}[kind](ax, group, cs, kind)
+        {"front": plot_front, "zoom": plot_front, "labelled": plot_front, "count": plot_count,
+         "bars": plot_bars}[kind](ax, group, cs, kind)
+        if kind == "labelled":
+            ax.set_ylabel(f"mean |error| vs {KNOBS[lab].get('truth_name', 'ideal')} (1/255, log)")
     fig.suptitle(f"{lab}: time against error\n{title_note}", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=90)
@@ -392,7 +440,7 @@ def plot_front(ax, group, cs, kind):
                     alpha=0.8, label=f"{s} (segments)" if s == "all" else s)
         else:
             ax.scatter([c["cpu_ms"] for c in pts], [err(c) for c in pts], marker="x", color="0.3", zorder=3,
-                       label="one primitive varied, others at default")
+                       label="one primitive varied, others at default" if kind != "labelled" else "configuration")
     front = sorted([c for c in cs if c["on_front"] == "yes"], key=lambda c: c["cpu_ms"])
     ax.step([c["cpu_ms"] for c in front], [err(c) for c in front], where="post", color="black", linewidth=1.2,
             alpha=0.7, label="Pareto front")
@@ -401,7 +449,7 @@ def plot_front(ax, group, cs, kind):
                     elinewidth=0.8, capsize=2)
         if c["default"]:
             ax.scatter([c["cpu_ms"]], [err(c)], s=170, facecolors="none", edgecolors="red", linewidths=1.6, zorder=4)
-        if not c["series"] and not zoom:
+        if not c["series"] and kind == "front":
             continue  # labelled in the zoomed panel
         text = str(c["knob"]) if c["series"] else c["config"]
         if c["default"]:
@@ -572,6 +620,13 @@ def check(lab, csv_path, configs):
             if not coarser["errors"]["mean_abs"] > finer["errors"]["mean_abs"]:
                 problems.append(f"series {series}: error at {coarser['knob']} ({coarser['errors']['mean_abs']}) "
                                 f"not above error at {finer['knob']} ({finer['errors']['mean_abs']})")
+    # Configurations whose error must be below another's (lab 3: trilinear below nearest).
+    by_name = {c["config"]: c for c in configs}
+    for better, worse in KNOBS[lab].get("order", []):
+        if better in by_name and worse in by_name and \
+                not by_name[better]["errors"]["mean_abs"] < by_name[worse]["errors"]["mean_abs"]:
+            problems.append(f"error of {better} ({by_name[better]['errors']['mean_abs']}) not below error of "
+                            f"{worse} ({by_name[worse]['errors']['mean_abs']})")
     for p in problems:
         print(f"tradeoff check: {p}")
     return not problems

@@ -463,6 +463,11 @@ TEST(ReferenceTool, BadInputIsOneLineAndExitCode2) {
     r = run_lab(kTools + "/lab_reference", "--lab lab9 --scene x --width 8 --height 8 --out y", kOut + "/bad2.log");
     EXPECT_EQ(r.exit_code, 2) << r.log;
     EXPECT_NE(r.log.find("unknown lab 'lab9'"), std::string::npos) << r.log;
+    // Lab 3's truth is the supersampled texture (--supersample N), not exact shapes.
+    r = run_lab(kTools + "/lab_reference", "--lab lab3_textures --scene x --width 8 --height 8 --ideal --out y",
+                kOut + "/bad4.log");
+    EXPECT_EQ(r.exit_code, 2) << r.log;
+    EXPECT_NE(r.log.find("--ideal: not available for lab3_textures"), std::string::npos) << r.log;
     r = run_lab(kTools + "/lab_compare", quoted(kOut + "/missing.png") + " " + quoted(kOut + "/missing.png"),
                 kOut + "/bad3.log");
     EXPECT_EQ(r.exit_code, 2) << r.log;

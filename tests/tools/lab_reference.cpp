@@ -3,13 +3,19 @@
 //   lab_reference --lab LAB --scene FILE --width W --height H --out ref.png [--ideal] [--supersample N]
 //
 // Renders what the tests' reference renders for that lab (lab1_camera: unlit albedo;
-// lab2_lighting: the scene's lighting and shading model, tests/reference/cpu_lighting.h).
+// lab2_lighting: the scene's lighting and shading model, tests/reference/cpu_lighting.h;
+// lab3_textures: the textured scene as its samplers describe it, tests/reference/cpu_texture.h,
+// anisotropy not modelled).
 // --ideal replaces the curved primitives by their exact surfaces (tests/reference/ideal.h) and,
 // for lab 2, shades every pixel with the exact normal: the truth a tessellation and a shading
-// model approximate. --supersample N takes N×N stratified samples per pixel (box filter).
+// model approximate. --supersample N takes N×N stratified samples per pixel (box filter); in
+// lab 3 it gives the filtering ground truth instead: N×N rays per pixel on a regular grid, each
+// with level-0 bilinear lookups, averaged (the texture over the pixel's footprint,
+// ref::render_supersampled). Lab 3 has no --ideal: its truth is that supersampled picture.
 // It shares no code with the labs; only labcore's scene loader, meshes and PNG writer.
 #include "reference/cpu_lighting.h"
 #include "reference/cpu_reference.h"
+#include "reference/cpu_texture.h"
 #include "reference/ideal.h"
 
 #include "image_io.h"
@@ -27,9 +33,10 @@ namespace {
 
 const char* kUsage =
     "usage: lab_reference --lab LAB --scene FILE --width W --height H --out ref.png [--ideal] [--supersample N]\n"
-    "  LAB: lab1_camera (unlit) or lab2_lighting (lit)\n"
-    "  --ideal          exact spheres, cylinders, cones, tori (and per-pixel exact normals in lab 2)\n"
-    "  --supersample N  N x N stratified samples per pixel, averaged (1 ... 16, default 1)\n";
+    "  LAB: lab1_camera (unlit), lab2_lighting (lit) or lab3_textures (textured)\n"
+    "  --ideal          exact spheres, cylinders, cones, tori (and per-pixel exact normals in lab 2; not lab 3)\n"
+    "  --supersample N  N x N stratified samples per pixel, averaged (1 ... 16, default 1); lab 3: the\n"
+    "                   filtering ground truth, N x N rays with level-0 bilinear lookups averaged\n";
 
 struct Args {
     std::string lab, scene, out;
@@ -70,8 +77,10 @@ Args parse(int argc, char** argv) {
     }
     if (a.lab.empty() || a.scene.empty() || a.out.empty() || a.width == 0 || a.height == 0)
         throw UsageError("--lab, --scene, --width, --height and --out are required");
-    if (a.lab != "lab1_camera" && a.lab != "lab2_lighting")
-        throw UsageError("--lab: unknown lab '" + a.lab + "' (lab1_camera or lab2_lighting)");
+    if (a.lab != "lab1_camera" && a.lab != "lab2_lighting" && a.lab != "lab3_textures")
+        throw UsageError("--lab: unknown lab '" + a.lab + "' (lab1_camera, lab2_lighting or lab3_textures)");
+    if (a.lab == "lab3_textures" && a.ideal)
+        throw UsageError("--ideal: not available for lab3_textures (its truth is --supersample N)");
     return a;
 }
 
@@ -101,7 +110,13 @@ int main(int argc, char** argv) {
         if (args.lab == "lab2_lighting")
             shade = args.ideal ? ref::make_ideal_lighting_shader(scene) : ref::make_lighting_shader(scene);
         ref::RefImage image;
-        if (args.ideal) {
+        if (args.lab == "lab3_textures") {
+            // The textured reference (cpu_texture.h); supersampled, the filtering ground truth.
+            image = args.supersample > 1
+                        ? ref::render_supersampled(scene, args.width, args.height, args.supersample)
+                        : ref::render_reference(scene, args.width, args.height,
+                                                ref::make_texture_shader(scene, args.width, args.height));
+        } else if (args.ideal) {
             const ref::IdealGeometry geometry(scene);
             image = ref::render_with(scene, args.width, args.height, shade, geometry.tracer(), args.supersample);
         } else {
