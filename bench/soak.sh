@@ -86,10 +86,11 @@ soak_lab() {
   wm_pid=$!
   for _ in $(seq 100); do xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q "window id" && break; sleep 0.1; done
 
-  # The lab's own scene, in a folder of its own (models/ linked), and the variants it cycles through.
+  # The lab's own scene, in a folder of its own (models/ and textures/ linked), and the variants it cycles through.
   local scenes="$work/scenes"
   mkdir -p "$scenes"
   ln -s "$root/scenes/models" "$scenes/models"
+  [ -d "$root/scenes/textures" ] && ln -s "$root/scenes/textures" "$scenes/textures"  # lab 3's images
   local base="$root/scenes/$lab.json" scene="$scenes/scene.json"
   cp "$base" "$scene"
   local -a goods=("$base")

@@ -76,14 +76,14 @@ Buffer Buffer::device_local(const VulkanContext& vk, const void* data, VkDeviceS
 }
 
 Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                      VkImageAspectFlags aspect) {
+                      VkImageAspectFlags aspect, uint32_t mip_levels) {
     VkDevice device = vk.device();
     Image result;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
     info.extent = {extent.width, extent.height, 1};
-    info.mipLevels = 1;
+    info.mipLevels = mip_levels;
     info.arrayLayers = 1;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -102,7 +102,7 @@ Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat forma
     view.image = image;
     view.viewType = VK_IMAGE_VIEW_TYPE_2D;
     view.format = format;
-    view.subresourceRange = {aspect, 0, 1, 0, 1};
+    view.subresourceRange = {aspect, 0, mip_levels, 0, 1};
     VkImageView image_view;
     VK_CHECK(vkCreateImageView(device, &view, nullptr, &image_view));
     result.view = Handle<VkImageView>(image_view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });

@@ -52,7 +52,8 @@ struct Image {
     Image& operator=(Image&& other) noexcept;  // destroys the old image in the right order first
 };
 
+// `mip_levels` levels; the view covers all of them.
 Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                      VkImageAspectFlags aspect);
+                      VkImageAspectFlags aspect, uint32_t mip_levels = 1);
 
 }  // namespace lab

@@ -739,18 +739,23 @@ LoadedModel load_obj(const std::string& path, float crease_deg, bool normalize, 
         m.emissive = glm::max(glm::vec3(finite_or(mt.emission[0], 0.0f), finite_or(mt.emission[1], 0.0f),
                                         finite_or(mt.emission[2], 0.0f)), glm::vec3(0.0f));
         m.shininess = std::clamp(finite_or(mt.shininess, 32.0f), 1.0f, 1000.0f);
-        if (!mt.diffuse_texname.empty()) {
-            std::string rel = mt.diffuse_texname;
+        // Texture maps: paths relative to the .mtl; Windows exporters write backslashes.
+        const auto texture = [&](const std::string& name, const char* what, std::string& out) {
+            if (name.empty()) return;
+            std::string rel = name;
             std::replace(rel.begin(), rel.end(), '\\', '/');
             const std::filesystem::path tex = std::filesystem::path(dir.empty() ? "." : dir) / rel;
             std::error_code ec;
             if (std::filesystem::is_regular_file(tex, ec)) {
-                m.albedo_texture = tex.lexically_normal().string();
+                out = std::filesystem::absolute(tex, ec).lexically_normal().string();
             } else {
-                warnings.add("texture " + quote(mt.diffuse_texname) + " of material " + quote(mt.name) +
-                             " not found; using its Kd colour");
+                warnings.add(std::string(what) + " " + quote(name) + " of material " + quote(mt.name) +
+                             " not found; the map is left out");
             }
-        }
+        };
+        texture(mt.diffuse_texname, "texture", m.albedo_texture);
+        texture(mt.specular_texname, "specular map", m.specular_texture);
+        texture(mt.emissive_texname, "emissive map", m.emissive_texture);
         model.materials.push_back(m);
     }
 

@@ -59,7 +59,9 @@ struct ObjMaterial {
     glm::vec3 specular{0.0f};   // Ks
     glm::vec3 emissive{0.0f};   // Ke
     float shininess = 32.0f;    // Ns, clamped to [1, 1000]
-    std::string albedo_texture; // map_Kd resolved to a path ("" = none or file missing)
+    std::string albedo_texture;   // map_Kd resolved to a path ("" = none or file missing)
+    std::string specular_texture; // map_Ks (the same)
+    std::string emissive_texture; // map_Ke (the same)
 };
 
 struct LoadedModel {

@@ -195,4 +195,16 @@ void write_buffer_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint3
     vkUpdateDescriptorSets(vk.device(), 1, &write, 0, nullptr);
 }
 
+void write_image_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding, VkSampler sampler,
+                            VkImageView view) {
+    VkDescriptorImageInfo image_info{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write.pImageInfo = &image_info;
+    vkUpdateDescriptorSets(vk.device(), 1, &write, 0, nullptr);
+}
+
 }  // namespace lab

@@ -69,5 +69,8 @@ VkDescriptorSet allocate_descriptor_set(const VulkanContext& vk, VkDescriptorPoo
 // Points `binding` of `set` at a whole buffer.
 void write_buffer_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                              VkBuffer buffer, VkDeviceSize size);
+// Points `binding` (a combined image sampler) of `set` at `view` read through `sampler`.
+void write_image_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding, VkSampler sampler,
+                            VkImageView view);
 
 }  // namespace lab

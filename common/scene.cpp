@@ -34,6 +34,11 @@ const std::vector<std::string>& primitive_mesh_names() {
     return names;
 }
 
+const std::vector<std::string>& procedural_texture_names() {
+    static const std::vector<std::string> names = {"checker", "metal", "grid"};
+    return names;
+}
+
 namespace {
 
 using json = nlohmann::json;
@@ -369,6 +374,66 @@ LightDesc read_light(const Context& ctx, const json& value, const std::string& p
     return l;
 }
 
+// [a, b]: two numbers in `range`.
+glm::vec2 read_vec2(const Context& ctx, const json& value, const std::string& path, const Range& range) {
+    if (!value.is_array() || value.size() != 2) {
+        const std::string got = value.is_array() ? "an array of " + std::to_string(value.size()) + " elements"
+                                                 : std::string(value.type_name());
+        fail(ctx, path, "expected an array of 2 numbers [u, v], got " + got);
+    }
+    return {float(read_number(ctx, value[0], index_path(path, 0), range)),
+            float(read_number(ctx, value[1], index_path(path, 1), range))};
+}
+
+// Lab 3: a texture map is "procedural:NAME" or an image path relative to the scene file. A
+// missing or broken image is not a scene error (the lab warns and shows a checkerboard); an
+// unknown procedural name is.
+std::string read_map(const Context& ctx, const json& value, const std::string& path) {
+    const std::string text = Section::text_of(ctx, value, path);
+    if (text.empty()) fail(ctx, path, "must not be empty (leave the key out for no map)");
+    const std::string prefix = "procedural:";
+    if (text.rfind(prefix, 0) == 0) {
+        const std::string name = text.substr(prefix.size());
+        const auto& names = procedural_texture_names();
+        if (std::find(names.begin(), names.end(), name) == names.end())
+            fail(ctx, path, "unknown procedural texture '" + name + "'" + suggestion(name, names));
+        return text;
+    }
+    fs::path file(text);
+    if (file.is_relative()) file = ctx.base_dir / file;
+    std::error_code ec;
+    return fs::absolute(file, ec).lexically_normal().string();
+}
+
+SamplerDesc read_sampler(const Context& ctx, const json& value, const std::string& path) {
+    SamplerDesc d;
+    Section s(ctx, value, path);
+    if (const json* v = s.find("filter"))
+        d.filter = SamplerDesc::Filter(s.choice(*v, "filter", "filter", {"nearest", "linear"}));
+    if (const json* v = s.find("mipmaps"))
+        d.mipmaps = SamplerDesc::Mipmaps(s.choice(*v, "mipmaps", "mipmap mode", {"none", "nearest", "linear"}));
+    s.integer("anisotropy", d.anisotropy, 1, 16);
+    if (const json* v = s.find("wrap"))
+        d.wrap = SamplerDesc::Wrap(s.choice(*v, "wrap", "wrap mode", {"repeat", "clamp", "mirror"}));
+    s.finish();
+    return d;
+}
+
+DistortionDesc read_distortion(const Context& ctx, const json& value, const std::string& path) {
+    DistortionDesc d;
+    Section s(ctx, value, path);
+    const auto vec2 = [&](const std::string& key, glm::vec2& out, const Range& range) {
+        if (const json* v = s.find(key)) out = read_vec2(ctx, *v, s.path_of(key), range);
+    };
+    vec2("amplitude", d.amplitude, closed_range(-1.0, 1.0));
+    vec2("frequency", d.frequency, closed_range(-1000.0, 1000.0));
+    vec2("position_frequency", d.position_frequency, closed_range(-1000.0, 1000.0));
+    vec2("scales", d.scales, closed_range(-1000.0, 1000.0));
+    vec2("weights", d.weights, closed_range(0.0, 1.0));
+    s.finish();
+    return d;
+}
+
 MaterialDesc read_material(const Context& ctx, const json& value, const std::string& path) {
     MaterialDesc m;
     Section s(ctx, value, path);
@@ -381,6 +446,17 @@ MaterialDesc read_material(const Context& ctx, const json& value, const std::str
     s.number("roughness_x", m.roughness_x, closed_range(0.01, 1.0));
     s.number("roughness_y", m.roughness_y, closed_range(0.01, 1.0));
     s.number("minnaert_k", m.minnaert_k, closed_range(0.0, 4.0));
+    // Lab 3: texture maps and how they are read.
+    if (const json* v = s.find("albedo_map")) m.albedo_map = read_map(ctx, *v, s.path_of("albedo_map"));
+    if (const json* v = s.find("specular_map")) m.specular_map = read_map(ctx, *v, s.path_of("specular_map"));
+    if (const json* v = s.find("emissive_map")) m.emissive_map = read_map(ctx, *v, s.path_of("emissive_map"));
+    s.number("emissive_strength", m.emissive_strength, kNonNegative);
+    if (const json* v = s.find("uv_scale")) m.uv_scale = read_vec2(ctx, *v, s.path_of("uv_scale"), kAnyNumber);
+    if (const json* v = s.find("uv_offset")) m.uv_offset = read_vec2(ctx, *v, s.path_of("uv_offset"), kAnyNumber);
+    if (const json* v = s.find("sampler")) m.sampler = read_sampler(ctx, *v, s.path_of("sampler"));
+    if (const json* v = s.find("sampling"))
+        m.distorted = s.choice(*v, "sampling", "sampling mode", {"single", "distorted"}) == 1;
+    if (const json* v = s.find("distortion")) m.distortion = read_distortion(ctx, *v, s.path_of("distortion"));
     s.finish();
     if (m.f0.x > 1.0f || m.f0.y > 1.0f || m.f0.z > 1.0f)
         fail(ctx, s.path_of("f0"), "each component must be <= 1 (a reflectance)");
@@ -469,7 +545,8 @@ const json& expect_array(const Context& ctx, const json& value, const std::strin
 // Models without a "material" key use the materials of their .mtl file: the
 // object is split into one object per material (ObjectDesc::obj_material picks
 // its triangles) and each .mtl material becomes a scene material named
-// "MODEL.obj#NAME" (Kd → albedo, Ks → specular, Ns → shininess, Ke → emissive).
+// "MODEL.obj#NAME" (Kd → albedo, Ks → specular, Ns → shininess, Ke → emissive; map_Kd,
+// map_Ks, map_Ke → albedo_map, specular_map, emissive_map).
 // Triangles with no material — or a model with no .mtl — use "MODEL.obj#default"
 // (the format's default material). Renderers and the CPU reference then see
 // ordinary objects and need no special case.
@@ -501,6 +578,9 @@ void expand_model_materials(const Context& ctx, Scene& scene) {
                 desc.specular = mtl.specular;
                 desc.shininess = mtl.shininess;
                 desc.emissive = mtl.emissive;
+                desc.albedo_map = mtl.albedo_texture;  // map_Kd, map_Ks, map_Ke (lab 3)
+                desc.specular_map = mtl.specular_texture;
+                desc.emissive_map = mtl.emissive_texture;
             }
             scene.materials[part.material] = desc;
             expanded.push_back(part);

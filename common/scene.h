@@ -11,6 +11,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace lab {
@@ -46,6 +47,34 @@ struct LightDesc {
     float outer_deg = 17.5f;
 };
 
+// Lab 3: how a texture is read (docs/scene-format.md, "sampler"). The default is the seed's:
+// bilinear, linear between mip levels, anisotropy 16, repeat.
+struct SamplerDesc {
+    enum class Filter { Nearest, Linear };
+    enum class Mipmaps { None, Nearest, Linear };
+    enum class Wrap { Repeat, Clamp, Mirror };
+    Filter filter = Filter::Linear;
+    Mipmaps mipmaps = Mipmaps::Linear;
+    int anisotropy = 16;  // 1 = off
+    Wrap wrap = Wrap::Repeat;
+    bool operator<(const SamplerDesc& o) const {
+        return std::tie(filter, mipmaps, anisotropy, wrap) < std::tie(o.filter, o.mipmaps, o.anisotropy, o.wrap);
+    }
+    bool operator==(const SamplerDesc& o) const { return !(*this < o) && !(o < *this); }
+};
+
+// Lab 3: the seed's distorted-UV multi-sampling, every number a key (defaults = the seed's):
+//   d = uv + (amplitude.x·sin(frequency.x·uv.y + position_frequency.x·p.y),
+//             amplitude.y·cos(frequency.y·uv.x + position_frequency.y·p.x))
+//   A = mix(mix(T(d), T(scales.x·uv), weights.x), T(scales.y·uv), weights.y)
+struct DistortionDesc {
+    glm::vec2 amplitude{0.02f, 0.015f};
+    glm::vec2 frequency{10.0f, 8.0f};
+    glm::vec2 position_frequency{2.0f, 1.5f};
+    glm::vec2 scales{2.0f, 0.5f};
+    glm::vec2 weights{0.3f, 0.2f};
+};
+
 struct MaterialDesc {
     glm::vec3 albedo{0.8f};
     glm::vec3 specular{0.0f};
@@ -58,7 +87,22 @@ struct MaterialDesc {
     float roughness_x = 0.15f;  // Ward: along the mesh tangent (+u)
     float roughness_y = 0.45f;  // Ward: along the bitangent (+v)
     float minnaert_k = 0.8f;
+    // Lab 3 texture maps: "" = none, "procedural:NAME", or an absolute image path (resolved
+    // against the scene file, or the .mtl file for map_Kd / map_Ks / map_Ke).
+    std::string albedo_map;
+    std::string specular_map;
+    std::string emissive_map;
+    float emissive_strength = 1.0f;  // e = emissive + emissive_strength · E(uv)
+    glm::vec2 uv_scale{1.0f};        // uv' = uv · uv_scale + uv_offset
+    glm::vec2 uv_offset{0.0f};
+    SamplerDesc sampler;
+    bool distorted = false;  // "sampling": "distorted" (albedo map only) instead of "single"
+    DistortionDesc distortion;
+    bool has_maps() const { return !albedo_map.empty() || !specular_map.empty() || !emissive_map.empty(); }
 };
+
+// The procedural texture names a map may use after "procedural:" (docs/scene-format.md).
+const std::vector<std::string>& procedural_texture_names();
 
 // Lab 2: which shading and lighting model a scene uses (docs/lighting.md).
 struct LightingDesc {

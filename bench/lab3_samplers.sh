@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# lab3_samplers.sh — frame time of each sampler setting on the grazing floor (scenes/lab3_floor.json)
+# at 1280x720, and lab 3 against lab 2 on lab 2's default scene, in one run. Two figures per case:
+# the median wall-clock ms of --benchmark, and the CPU ms per frame (user + sys of a run of N + 5
+# frames minus a run of 5: start-up and pipeline compilation cancel out). On a machine shared with
+# other jobs the wall clock swings by 2x between runs; the CPU time hardly moves.
+# The error of each setting against the supersampled ground truth comes from the test
+# Lab3Filtering.AnisotropyLowersTheErrorAgainstTheGroundTruth (build/test_output/lab3/sampler_errors.md).
+#   bash bench/lab3_samplers.sh [frames] [rounds]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${LAB_BUILD_DIR:-$root/build}"
+frames="${1:-60}"
+rounds="${2:-3}"
+export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+median() { "$@" | sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p'; }
+cpu_s() { /usr/bin/time -f "%U %S" "$@" 2>&1 >/dev/null | tail -1 | awk '{print $1 + $2}'; }
+# "WALL_MS/CPU_MS" for: EXE SCENE
+measure() {
+  local wall short long
+  wall=$(median "$1" --benchmark "$frames" --scene "$2")
+  short=$(cpu_s "$1" --benchmark 5 --scene "$2")
+  long=$(cpu_s "$1" --benchmark $((frames + 5)) --scene "$2")
+  echo "$wall/$(awk -v a="$short" -v b="$long" -v n="$frames" 'BEGIN { printf "%.1f", (b - a) / n * 1000 }')"
+}
+settings=(
+  'nearest|"filter": "nearest", "mipmaps": "none", "anisotropy": 1'
+  'linear, no mipmaps|"filter": "linear", "mipmaps": "none", "anisotropy": 1'
+  'trilinear|"filter": "linear", "mipmaps": "linear", "anisotropy": 1'
+  'trilinear + aniso 2|"filter": "linear", "mipmaps": "linear", "anisotropy": 2'
+  'trilinear + aniso 4|"filter": "linear", "mipmaps": "linear", "anisotropy": 4'
+  'trilinear + aniso 8|"filter": "linear", "mipmaps": "linear", "anisotropy": 8'
+  'trilinear + aniso 16|"filter": "linear", "mipmaps": "linear", "anisotropy": 16'
+)
+for i in "${!settings[@]}"; do
+  IFS='|' read -r label sampler <<<"${settings[i]}"
+  sed -e "s|\"textures/|\"$root/scenes/textures/|" \
+      -e "s|\"sampler\": {[^}]*}|\"sampler\": { $sampler }|" "$root/scenes/lab3_floor.json" >"$tmp/floor_$i.json"
+done
+echo "wall median ms / CPU ms per frame at 1280x720, LP_NUM_THREADS=$LP_NUM_THREADS, $frames frames, $rounds rounds"
+for ((r = 1; r <= rounds; r++)); do
+  line="round $r:"
+  line+="  lab2 on lab2_lighting.json $(measure "$build/lab2_lighting/lab2_lighting" "$root/scenes/lab2_lighting.json") |"
+  line+="  lab3 on lab2_lighting.json $(measure "$build/lab3_textures/lab3_textures" "$root/scenes/lab2_lighting.json") |"
+  line+="  lab3 default $(measure "$build/lab3_textures/lab3_textures" "$root/scenes/lab3_textures.json") |"
+  for i in "${!settings[@]}"; do
+    IFS='|' read -r label sampler <<<"${settings[i]}"
+    line+="  floor $label $(measure "$build/lab3_textures/lab3_textures" "$tmp/floor_$i.json") |"
+  done
+  echo "$line"
+done

@@ -1,0 +1,189 @@
+// texture.cpp — texture upload, mip chains and the sampler cache.
+#include "texture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+namespace lab {
+namespace {
+
+double srgb_to_linear(uint8_t v) {
+    const double c = v / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+uint8_t linear_to_srgb(double c) {
+    c = std::clamp(c, 0.0, 1.0);
+    const double e = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+    return uint8_t(std::lround(e * 255.0));
+}
+
+// One layout transition of the mip levels [base, base + count).
+void barrier(VkCommandBuffer cmd, VkImage image, uint32_t base, uint32_t count, VkImageLayout from, VkImageLayout to,
+             VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
+             VkPipelineStageFlags dst_stage) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = src_access;
+    b.dstAccessMask = dst_access;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base, count, 0, 1};
+    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_SRGB;
+
+bool can_blit_linear(const VulkanContext& vk) {
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(vk.physical_device(), kFormat, &fp);
+    const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                        VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    return (fp.optimalTilingFeatures & needed) == needed;
+}
+
+}  // namespace
+
+uint32_t mip_level_count(uint32_t width, uint32_t height) {
+    uint32_t levels = 1;
+    for (uint32_t size = std::max(width, height); size > 1; size /= 2) ++levels;
+    return levels;
+}
+
+Image8 downsample_srgb(const Image8& image) {
+    Image8 out;
+    out.width = std::max(image.width / 2, 1);
+    out.height = std::max(image.height / 2, 1);
+    out.rgba.resize(size_t(out.width) * size_t(out.height) * 4);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 4; ++c) {
+                double sum = 0.0;
+                for (int dy = 0; dy < 2; ++dy)
+                    for (int dx = 0; dx < 2; ++dx) {
+                        const int sx = std::min(2 * x + dx, image.width - 1), sy = std::min(2 * y + dy, image.height - 1);
+                        const uint8_t v = image.rgba[(size_t(sy) * size_t(image.width) + size_t(sx)) * 4 + size_t(c)];
+                        sum += c == 3 ? v / 255.0 : srgb_to_linear(v);  // alpha is linear already
+                    }
+                out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4 + size_t(c)] =
+                    c == 3 ? uint8_t(std::lround(sum / 4.0 * 255.0)) : linear_to_srgb(sum / 4.0);
+            }
+    return out;
+}
+
+Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source) {
+    Texture t;
+    t.width = uint32_t(pixels.width);
+    t.height = uint32_t(pixels.height);
+    t.levels = mipmaps ? mip_level_count(t.width, t.height) : 1;
+    const char* forced = std::getenv("LAB_MIPMAPS");
+    if (forced && std::string(forced) == "cpu") source = MipSource::Cpu;
+    const bool gpu_mips = t.levels > 1 && source == MipSource::Auto && can_blit_linear(vk);
+
+    // The CPU fallback computes every level here; the GPU path uploads level 0 only.
+    std::vector<Image8> chain{pixels};
+    if (t.levels > 1 && !gpu_mips)
+        while (chain.size() < t.levels) chain.push_back(downsample_srgb(chain.back()));
+    VkDeviceSize bytes = 0;
+    for (const Image8& level : chain) bytes += level.rgba.size();
+    Buffer staging = Buffer::host_visible(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    std::vector<VkBufferImageCopy> copies;
+    VkDeviceSize offset = 0;
+    for (uint32_t level = 0; level < chain.size(); ++level) {
+        std::memcpy(static_cast<char*>(staging.mapped()) + offset, chain[level].rgba.data(), chain[level].rgba.size());
+        VkBufferImageCopy copy{};
+        copy.bufferOffset = offset;
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+        copy.imageExtent = {uint32_t(chain[level].width), uint32_t(chain[level].height), 1};
+        copies.push_back(copy);
+        offset += chain[level].rgba.size();
+    }
+
+    VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    if (gpu_mips) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    t.image = create_image_2d(vk, {t.width, t.height}, kFormat, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
+    const VkImage image = t.image.image;
+    vk.run_once([&](VkCommandBuffer cmd) {
+        const auto transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, transfer);
+        vkCmdCopyBufferToImage(cmd, staging.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies.size()),
+                               copies.data());
+        const auto to_shader = [&](uint32_t level, VkImageLayout from, VkAccessFlags access) {
+            barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
+                    VK_ACCESS_SHADER_READ_BIT, transfer, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+        };
+        if (!gpu_mips) {
+            for (uint32_t level = 0; level < t.levels; ++level)
+                to_shader(level, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT);
+            return;
+        }
+        // Each level is a linear-filtered blit of the one above at half the size: for even sizes
+        // exactly the 2×2 box in linear colour (the blit decodes sRGB, filters, encodes).
+        int32_t w = int32_t(t.width), h = int32_t(t.height);
+        for (uint32_t level = 1; level < t.levels; ++level) {
+            barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, transfer, transfer);
+            const int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
+            VkImageBlit blit{};
+            blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1};
+            blit.srcOffsets[1] = {w, h, 1};
+            blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+            blit.dstOffsets[1] = {nw, nh, 1};
+            vkCmdBlitImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           1, &blit, VK_FILTER_LINEAR);
+            to_shader(level - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT);
+            w = nw;
+            h = nh;
+        }
+        to_shader(t.levels - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT);
+    });
+    return t;
+}
+
+float SamplerCache::effective_anisotropy(int requested) const {
+    if (requested <= 1 || !vk_.enabled_features().samplerAnisotropy) return 1.0f;
+    return std::min(float(requested), vk_.properties().limits.maxSamplerAnisotropy);
+}
+
+VkSampler SamplerCache::get(const SamplerDesc& desc) {
+    auto it = samplers_.find(desc);
+    if (it != samplers_.end()) return it->second;
+    const float anisotropy = effective_anisotropy(desc.anisotropy);
+    if (desc.anisotropy > 1 && anisotropy < float(desc.anisotropy)) {
+        char line[160];
+        std::snprintf(line, sizeof line, "anisotropy %d clamped to %g (the device limit%s)", desc.anisotropy,
+                      double(anisotropy),
+                      vk_.enabled_features().samplerAnisotropy ? "" : ": no anisotropic filtering");
+        warnings_.push_back(line);
+        std::fprintf(stderr, "warning: %s\n", line);
+    }
+    using S = SamplerDesc;
+    const VkFilter filter = desc.filter == S::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+    const VkSamplerAddressMode wrap = desc.wrap == S::Wrap::Repeat  ? VK_SAMPLER_ADDRESS_MODE_REPEAT
+                                      : desc.wrap == S::Wrap::Clamp ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
+                                                                    : VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = filter;
+    info.minFilter = filter;
+    info.mipmapMode = desc.mipmaps == S::Mipmaps::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeV = info.addressModeW = wrap;
+    info.anisotropyEnable = anisotropy > 1.0f ? VK_TRUE : VK_FALSE;
+    info.maxAnisotropy = anisotropy;
+    info.minLod = 0.0f;
+    // "mipmaps": "none" reads level 0 only (the spec's way to switch mipmapping off).
+    info.maxLod = desc.mipmaps == S::Mipmaps::None ? 0.0f : VK_LOD_CLAMP_NONE;
+    info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(vk_.device(), &info, nullptr, &sampler));
+    VkDevice device = vk_.device();
+    return samplers_.emplace(desc, Handle<VkSampler>(sampler, [device](VkSampler s) { vkDestroySampler(device, s, nullptr); }))
+        .first->second;
+}
+
+}  // namespace lab

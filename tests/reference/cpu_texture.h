@@ -1,0 +1,76 @@
+// cpu_texture.h — texture sampling for the CPU reference, written from the Vulkan specification
+// (chapter "Texel Filtering" / "Texel Coordinate Systems"), independent of the lab's code:
+//
+//   * its own decoding of the image files (stb_image compiled here) and of the procedural
+//     sources (from their formulas in docs/scene-format.md);
+//   * its own mip chain: each level the 2×2 box average of the one above in *linear* colour
+//     (an odd last row / column is averaged with itself), kept in double, never re-quantized;
+//   * texel centres at (i + ½)/size; wrap modes repeat, mirrored repeat, clamp to edge;
+//   * nearest: texel floor(u·w); linear: the 4 texels around u·w − ½, bilinear weights;
+//   * LOD λ = log2(ρmax) with ρ from *analytic* UV derivatives at the pixel (ray differentials,
+//     Igehy 1999), the isotropic ρmax = max(|∂uv/∂x|·size, |∂uv/∂y|·size); level nearest:
+//     ceil(λ + ½) − 1, level linear: between floor(λ) and floor(λ)+1 (λ clamped to the chain).
+// Anisotropic filtering is not modelled: tests that compare against this use anisotropy 1.
+// The supersampled ground truth (render_supersampled) averages level-0 bilinear lookups at
+// n×n points of every pixel: the texture averaged over the pixel's footprint.
+#pragma once
+
+#include "reference/cpu_reference.h"
+
+#include <glm/glm.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ref {
+
+struct TextureLevel {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::dvec4> texels;  // linear RGBA, row 0 = v ∈ [0, 1/height)
+    const glm::dvec4& at(int x, int y) const { return texels[size_t(y) * size_t(width) + size_t(x)]; }
+};
+
+struct RefTexture {
+    std::vector<TextureLevel> levels;  // [0] = the image; one level without mipmaps
+    bool fallback = false;             // the map could not be read: the magenta/black checkerboard
+};
+
+// 8-bit sRGB RGBA pixels → a texture (linear), with the mip chain down to 1×1 if `mipmaps`.
+RefTexture make_texture(int width, int height, const std::vector<unsigned char>& srgb_rgba, bool mipmaps);
+// A map as the scene names it ("procedural:NAME" or a file). Files that do not decode, or that
+// exceed `max_dimension`, give the checkerboard with fallback = true.
+RefTexture load_texture(const std::string& map, bool mipmaps, int max_dimension = 16384);
+
+// The wrapped integer texel coordinate (spec: "Wrapping Operation").
+int wrap_texel(int i, int size, lab::SamplerDesc::Wrap wrap);
+
+// One filtered lookup at `level` (no mip selection): nearest or bilinear.
+glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, lab::SamplerDesc::Filter filter,
+                        lab::SamplerDesc::Wrap wrap);
+
+// The LOD λ = log2(ρmax) of a lookup with UV derivatives dx, dy (per pixel) on `level0`.
+double lod(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy);
+
+// A full lookup as a sampler with `desc` does it (anisotropy ignored).
+glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::dvec2 uv, glm::dvec2 dx,
+                  glm::dvec2 dy);
+
+// A ShadeFn for lab 3 (Phong or flat shading): lab 2's equation with the textured terms
+//   a = albedo·A(uv'), s = specular·S(uv'), e = emissive + emissive_strength·E(uv'),
+//   uv' = uv·uv_scale + uv_offset, A distorted per docs/scene-format.md when "sampling" is
+// "distorted". The UV derivatives come from ray differentials of a width × height image.
+// With `supersample_level0` every lookup is bilinear on level 0 (for render_supersampled).
+ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0 = false);
+
+// The LOD λ of the first map's lookup (albedo, else specular, else emissive) at a hit, from the
+// same ray differentials; −1e9 for misses and materials without maps. λ ≤ 0: magnified.
+std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int width, int height);
+
+// The ground truth for filtering: n × n rays per pixel on a regular grid, each shaded with
+// level-0 bilinear lookups, averaged (linear colour). Misses average in the background.
+RefImage render_supersampled(const lab::Scene& scene, int width, int height, int n);
+
+}  // namespace ref

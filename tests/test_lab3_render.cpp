@@ -1,0 +1,507 @@
+// test_lab3_render.cpp — the real lab 3 binary, rendering headless, against the CPU reference.
+//
+// Each test writes a small scene (test_output/lab3/NAME.json), runs
+//     lab3_textures --scene FILE --headless --validate --out OUT.png --width 320 --height 180
+// and compares the PNG with ref::render_reference() shaded by ref::make_texture_shader()
+// (tests/reference/cpu_texture.*: sampling written from the Vulkan specification, with its own
+// decoding, mip chain and ray-differential LOD). Anisotropy is off in every comparison (the
+// reference does not model it).
+//
+// Acceptance on interior pixels (away from silhouettes, and for nearest filtering away from
+// texel borders, where float and double may round to different texels):
+//   * magnified (reference λ ≤ 0): every pixel within 2/255;
+//   * minified (λ > 0): at least 99 % of the pixels within 2/255. The rest differ because the
+//     GPU takes the LOD from differences across a 2×2 pixel quad (a finite difference one pixel
+//     wide, constant over the quad) and blends mip levels with 4-bit precision (lavapipe's
+//     mipmapPrecisionBits), while the reference uses the exact derivative at the pixel centre.
+// The filtering lesson compares each sampler setting with a 16×16 supersampled ground truth.
+#include "reference/cpu_reference.h"
+#include "reference/cpu_texture.h"
+#include "reference/image_compare.h"
+#include "image_io.h"
+#include "lab_runner.h"
+#include "temp_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab3";
+const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
+const std::string kTextures = kScenes + "/textures";
+constexpr int kWidth = 320, kHeight = 180;
+
+// A scene file in test_output/lab3: `materials` and `objects` JSON, a camera, ambient 1 and no
+// lights unless `lights` says otherwise (then colour = emissive + albedo·A exactly).
+std::string write_scene(const std::string& name, const std::string& materials, const std::string& objects,
+                        const std::string& camera = R"({"position": [0, 1.6, 1.6], "target": [0, 0, 0]})",
+                        const std::string& lights = "[]", const std::string& ambient = "1.0") {
+    fs::create_directories(kOutDir);
+    const std::string file = kOutDir + "/" + name + ".json";
+    std::ofstream(file) << R"({"camera": )" << camera << R"(, "background": [0.1, 0.1, 0.1], "ambient": {"intensity": )"
+                        << ambient << R"(}, "lighting": {"nan_check": "on"}, "lights": )" << lights
+                        << R"(, "materials": )" << materials << R"(, "objects": )" << objects << "}";
+    return file;
+}
+
+// A 2×2 plane at the origin with material "m".
+std::string plane_scene(const std::string& name, const std::string& material, const std::string& lights = "[]") {
+    return write_scene(name, R"({"m": )" + material + "}", R"([{"mesh": "plane", "material": "m", "scale": [2, 1, 2]}])",
+                       R"({"position": [0, 1.6, 1.6], "target": [0, 0, 0]})", lights);
+}
+
+RunResult run(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight,
+              const std::string& extra = "") {
+    fs::create_directories(kOutDir);
+    const std::string png = kOutDir + "/" + name + ".png";
+    std::error_code ec;
+    fs::remove(png, ec);
+    return run_lab(LAB3_EXE,
+                   "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) + " --width " +
+                       std::to_string(w) + " --height " + std::to_string(h) + " " + extra,
+                   kOutDir + "/" + name + ".log");
+}
+
+// Renders with the lab; "" after a failed assertion.
+std::string render(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight) {
+    const RunResult r = run(scene, name, w, h);
+    EXPECT_EQ(r.exit_code, 0) << "lab3_textures failed on " << scene << ":\n" << r.log;
+    const std::string png = kOutDir + "/" + name + ".png";
+    return r.exit_code == 0 && fs::exists(png) ? png : "";
+}
+
+size_t magenta_pixels(const lab::Image8& image) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
+    return n;
+}
+
+struct Verdict {
+    size_t magnified = 0, magnified_bad = 0, minified = 0, minified_bad = 0;
+    int magnified_max = 0;
+};
+
+// Renders `scene_file` and checks it against the reference by the rules in the file comment.
+// `texel_edges`: nearest filtering, also mask pixels next to a texel border of the albedo map.
+Verdict expect_matches(const std::string& scene_file, const std::string& name, bool texel_edges = false,
+                       bool checkerboard_expected = false) {
+    Verdict v;
+    const std::string png = render(scene_file, name);
+    if (png.empty()) return v;
+    const lab::Image8 actual = lab::read_png(png);
+    const lab::Scene scene = lab::load_scene(scene_file);
+    ref::RefImage reference = ref::render_reference(scene, kWidth, kHeight, ref::make_texture_shader(scene, kWidth, kHeight));
+    const auto lod = ref::make_lod_probe(scene, kWidth, kHeight);
+    if (texel_edges)  // fold the texel index into the ids: the edge mask then covers texel borders
+        for (size_t i = 0; i < reference.hits.size(); ++i) {
+            const ref::Hit& hit = reference.hits[i];
+            if (!hit.hit) continue;
+            const lab::MaterialDesc& m = scene.materials.at(hit.material);
+            const ref::RefTexture t = ref::load_texture(m.albedo_map, false);
+            const glm::dvec2 uv = hit.uv * glm::dvec2(m.uv_scale) + glm::dvec2(m.uv_offset);
+            const int tx = int(std::floor(uv.x * t.levels[0].width)), ty = int(std::floor(uv.y * t.levels[0].height));
+            reference.object_id[i] = (reference.object_id[i] * 7919 + tx * 131 + ty) & 0x3fffffff;
+        }
+    // Nearest mipmapping switches level where λ crosses n + ½: a designed discontinuity, masked like
+    // a silhouette (the GPU's quad LOD puts the switch a pixel earlier or later).
+    for (size_t i = 0; i < reference.hits.size(); ++i)
+        if (reference.hits[i].hit &&
+            scene.materials.at(reference.hits[i].material).sampler.mipmaps == lab::SamplerDesc::Mipmaps::Nearest)
+            reference.object_id[i] = (reference.object_id[i] * 31 + int(std::ceil(lod(reference.hits[i]) + 0.5))) & 0x3fffffff;
+    ref::CompareOptions options;
+    options.tolerance = 2;
+    options.grazing_cos = 0.05;
+    const std::vector<uint8_t> mask = ref::edge_mask(reference, options);
+    const lab::Image8 expected = ref::encode_srgb(reference);
+    if (checkerboard_expected)
+        EXPECT_GT(magenta_pixels(actual), 1000u) << "no magenta/black checkerboard in " << png;
+    else
+        EXPECT_EQ(magenta_pixels(actual), 0u) << "NaN/Inf (or the missing-image checkerboard) in " << png;
+    size_t covered = 0;
+    for (size_t p = 0; p < mask.size(); ++p) {
+        covered += reference.object_id[p] >= 0;
+        if (mask[p] || !reference.hits[p].hit) continue;
+        int diff = 0;
+        for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(actual.rgba[4 * p + c]) - int(expected.rgba[4 * p + c])));
+        if (lod(reference.hits[p]) <= 0.0) {
+            ++v.magnified;
+            v.magnified_bad += diff > 2;
+            v.magnified_max = std::max(v.magnified_max, diff);
+        } else {
+            ++v.minified;
+            v.minified_bad += diff > 2;
+        }
+    }
+    EXPECT_GT(covered, mask.size() / 10) << "test scene shows almost nothing";
+    EXPECT_EQ(v.magnified_bad, 0u) << name << ": magnified pixels beyond 2/255 (max " << v.magnified_max << ")";
+    EXPECT_LE(v.minified_bad, v.minified / 100) << name << ": minified pixels beyond 2/255";
+    std::printf("[ compare ] %s: magnified %zu px (max diff %d/255), minified %zu px (%.2f%% beyond 2/255)\n", name.c_str(),
+                v.magnified, v.magnified_max, v.minified, v.minified ? 100.0 * double(v.minified_bad) / double(v.minified) : 0.0);
+    if (::testing::Test::HasFailure()) ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png", options);
+    return v;
+}
+
+std::string tex(const std::string& file) { return kTextures + "/" + file; }
+const std::string kAnisoOff = R"("sampler": {"anisotropy": 1})";
+
+// --- every map ---------------------------------------------------------------------------
+
+TEST(Lab3Render, AlbedoMapMagnified) {
+    const Verdict v = expect_matches(plane_scene("albedo", R"({"albedo_map": "procedural:checker", )" + kAnisoOff + "}"), "albedo");
+    EXPECT_GT(v.magnified, 10000u);  // the 8×8 checker over most of the image: magnified everywhere
+}
+TEST(Lab3Render, AlbedoImageTimesColour) {
+    expect_matches(plane_scene("albedo_image", R"({"albedo": [0.5, 1, 0.8], "albedo_map": ")" + tex("wood.png") +
+                                                   R"(", "uv_scale": [0.7, 0.7], )" + kAnisoOff + "}"),
+                   "albedo_image");
+}
+TEST(Lab3Render, SpecularMap) {
+    expect_matches(plane_scene("specular", R"({"albedo": [0.2, 0.2, 0.2], "specular": [1, 1, 1], "shininess": 8,
+        "specular_map": "procedural:metal", "uv_scale": [0.4, 0.4], )" + kAnisoOff + "}",
+                               R"([{"type": "directional", "direction": [0, -1, -1], "intensity": 1}])"),
+                   "specular");
+}
+TEST(Lab3Render, EmissiveMap) {
+    expect_matches(plane_scene("emissive", R"({"albedo": [0.1, 0.1, 0.1], "emissive": [0.05, 0, 0], "emissive_map": "procedural:grid",
+        "emissive_strength": 2, "uv_scale": [0.15, 0.15], )" + kAnisoOff + "}"),
+                   "emissive");
+}
+TEST(Lab3Render, AllThreeMapsLit) {
+    expect_matches(plane_scene("all_maps", R"({"albedo_map": ")" + tex("tiles.png") + R"(", "specular": [0.8, 0.8, 0.8],
+        "specular_map": "procedural:metal", "emissive_map": "procedural:grid", "emissive_strength": 0.5, )" + kAnisoOff + "}",
+                               R"([{"type": "point", "position": [0.3, 0.8, 0.2], "intensity": 1.5}])"),
+                   "all_maps");
+}
+
+// --- wrap modes, uv scale / offset, filters ---------------------------------------------------
+
+class Lab3Wrap : public ::testing::TestWithParam<std::string> {};
+TEST_P(Lab3Wrap, MatchesReference) {
+    // The map 1.6 times across, starting at −0.3: every mode shows its treatment of the edges.
+    const std::string wrap = GetParam();
+    expect_matches(plane_scene("wrap_" + wrap, R"({"albedo_map": ")" + tex("wood.png") + R"(", "uv_scale": [1.6, 1.6],
+        "uv_offset": [-0.3, -0.3], "sampler": {"anisotropy": 1, "wrap": ")" + wrap + "\"}}"),
+                   "wrap_" + wrap);
+}
+INSTANTIATE_TEST_SUITE_P(AllWraps, Lab3Wrap, ::testing::Values("repeat", "clamp", "mirror"),
+                         [](const auto& info) { return info.param; });
+
+TEST(Lab3Render, NearestFilterWithUvScaleAndOffset) {
+    expect_matches(plane_scene("nearest", R"({"albedo_map": "procedural:checker", "uv_scale": [2.5, 1.5], "uv_offset": [0.3, -0.2],
+        "sampler": {"filter": "nearest", "mipmaps": "none", "anisotropy": 1, "wrap": "mirror"}})"),
+                   "nearest", true);
+}
+
+TEST(Lab3Render, DistortedSampling) {
+    expect_matches(plane_scene("distorted", R"({"albedo_map": ")" + tex("bricks.png") + R"(", "sampling": "distorted", )" +
+                                                kAnisoOff + "}"),
+                   "distorted");
+}
+TEST(Lab3Render, DistortedSamplingOwnNumbers) {
+    expect_matches(plane_scene("distorted_numbers", R"({"albedo_map": ")" + tex("bricks.png") + R"(", "sampling": "distorted",
+        "distortion": {"amplitude": [0.05, -0.04], "frequency": [6, 12], "position_frequency": [-1, 3], "scales": [1.5, 0.75],
+                       "weights": [0.5, 0.4]}, )" + kAnisoOff + "}"),
+                   "distorted_numbers");
+}
+
+// --- minified: a tiled floor at a grazing angle (trilinear, no anisotropy) -----------------------
+
+const std::string kFloorCamera = R"({"position": [0, 0.6, 3], "target": [0, 0, -2], "far": 100})";
+std::string floor_scene(const std::string& name, const std::string& sampler) {
+    return write_scene(name, R"({"floor": {"albedo_map": ")" + tex("tiles.png") + R"(", "uv_scale": [20, 20], "sampler": )" +
+                                 sampler + "}}",
+                       R"([{"mesh": "plane", "material": "floor", "scale": [40, 1, 40]}])", kFloorCamera);
+}
+
+TEST(Lab3Render, MinifiedFloorTrilinear) {
+    const Verdict v = expect_matches(floor_scene("floor_trilinear", R"({"anisotropy": 1})"), "floor_trilinear");
+    EXPECT_GT(v.minified, 10000u);
+}
+TEST(Lab3Render, MinifiedFloorCpuMipChain) {
+    // The same floor with the mip chain made by the CPU fallback (2×2 box in linear colour) instead
+    // of GPU blits: the upload path of every level, validation on, against the reference.
+    setenv("LAB_MIPMAPS", "cpu", 1);
+    const Verdict v = expect_matches(floor_scene("floor_cpu_mips", R"({"anisotropy": 1})"), "floor_cpu_mips");
+    unsetenv("LAB_MIPMAPS");
+    EXPECT_GT(v.minified, 10000u);
+}
+TEST(Lab3Render, MinifiedFloorNearestMipmaps) {
+    expect_matches(floor_scene("floor_nearest_mip", R"({"anisotropy": 1, "mipmaps": "nearest"})"), "floor_nearest_mip");
+}
+
+// --- models: .mtl maps ------------------------------------------------------------------------
+
+TEST(Lab3Render, MtlTexturePath) {
+    // A quad whose .mtl names map_Kd with Windows separators, in a sub-folder of the model's.
+    // The .mtl material gets the default sampler, anisotropy 16, and lavapipe's anisotropic filter
+    // differs from the isotropic reference even where the map is magnified. So: (1) the .mtl
+    // scene must render exactly like the same quad with an explicit material naming the same
+    // file (default sampler), and (2) that explicit scene with anisotropy 1 must match the reference.
+    fs::create_directories(kOutDir + "/mtl/maps");
+    fs::copy_file(tex("bricks.png"), kOutDir + "/mtl/maps/bricks.png", fs::copy_options::overwrite_existing);
+    std::ofstream(kOutDir + "/mtl/quad.mtl") << "newmtl brick\nKd 1 1 1\nmap_Kd maps\\bricks.png\n";
+    const std::string obj = "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nvt 0 0\nvt 0.25 0\nvt 0.25 0.25\nvt 0 0.25\nvn 0 1 0\n";
+    std::ofstream(kOutDir + "/mtl/quad.obj") << "mtllib quad.mtl\n" << obj << "usemtl brick\nf 1/1/1 2/2/1 3/3/1 4/4/1\n";
+    std::ofstream(kOutDir + "/mtl/plain.obj") << obj << "f 1/1/1 2/2/1 3/3/1 4/4/1\n";
+    const std::string camera = R"({"position": [0, 2.2, 0.8], "target": [0, 0, 0]})";
+    const std::string from_mtl = write_scene("mtl", "{}", R"([{"mesh": ")" + kOutDir + R"(/mtl/quad.obj"}])", camera);
+    const lab::Scene scene = lab::load_scene(from_mtl);
+    ASSERT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(fs::path(scene.materials.begin()->second.albedo_map), fs::path(kOutDir + "/mtl/maps/bricks.png"));
+    const auto explicit_scene = [&](const std::string& name, const std::string& sampler) {
+        return write_scene(name, R"({"brick": {"albedo": [1, 1, 1], "albedo_map": ")" + kOutDir + R"(/mtl/maps/bricks.png")" +
+                                     sampler + "}}",
+                           R"([{"mesh": ")" + kOutDir + R"(/mtl/plain.obj", "material": "brick"}])", camera);
+    };
+    const std::string a = render(from_mtl, "mtl"), b = render(explicit_scene("mtl_explicit", ""), "mtl_explicit");
+    ASSERT_FALSE(a.empty() || b.empty());
+    EXPECT_TRUE(read_text(a) == read_text(b)) << a << " differs from " << b;
+    const Verdict v = expect_matches(explicit_scene("mtl_explicit_aniso_off", ", " + kAnisoOff), "mtl_explicit_aniso_off");
+    EXPECT_GT(v.magnified, 5000u);
+}
+
+// --- lab 2's scene: lab 3 changes nothing where there are no maps --------------------------------
+
+TEST(Lab3Render, Lab2SceneUnchanged) {
+    const std::string file = kOutDir + "/lab2_scene.json";
+    fs::create_directories(kOutDir);
+    std::string text = read_text(kScenes + "/lab2_lighting.json");
+    text.replace(text.find("\"models/pawn.obj\""), 17, "\"" + kScenes + "/models/pawn.obj\"");
+    std::ofstream(file) << text;
+    const std::string png3 = render(file, "lab2_scene_lab3");
+    const RunResult r2 = run_lab(LAB2_EXE, "--scene " + quoted(file) + " --headless --validate --out " +
+                                               quoted(kOutDir + "/lab2_scene_lab2.png") + " --width 320 --height 180",
+                                 kOutDir + "/lab2_scene_lab2.log");
+    ASSERT_EQ(r2.exit_code, 0) << r2.log;
+    ASSERT_FALSE(png3.empty());
+    EXPECT_TRUE(read_text(png3) == read_text(kOutDir + "/lab2_scene_lab2.png")) << "lab 3 draws lab 2's scene differently";
+}
+
+// --- the default scene (anisotropy off, markers off) ------------------------------------------------
+
+// The default scene made absolute (paths), with `edit` applied to every material with maps.
+std::string default_scene_variant(const std::string& name, const std::function<void(json&)>& edit) {
+    json scene = json::parse(read_text(kScenes + "/lab3_textures.json"));
+    scene["lighting"]["markers"] = false;  // the reference does not draw markers
+    for (json& object : scene["objects"]) {
+        const std::string mesh = object["mesh"];
+        if (mesh.size() > 4 && mesh.substr(mesh.size() - 4) == ".obj") object["mesh"] = kScenes + "/" + mesh;
+    }
+    for (auto& [key, material] : scene["materials"].items())
+        for (const char* map : {"albedo_map", "specular_map", "emissive_map"})
+            if (material.contains(map)) {
+                const std::string value = material[map];
+                if (value.rfind("procedural:", 0) != 0) material[map] = kScenes + "/" + value;
+                edit(material);
+            }
+    const std::string file = kOutDir + "/" + name + ".json";
+    fs::create_directories(kOutDir);
+    std::ofstream(file) << scene.dump(1);
+    return file;
+}
+
+TEST(Lab3Render, DefaultSceneAnisotropyOff) {
+    expect_matches(default_scene_variant("default_aniso_off", [](json& m) { m["sampler"]["anisotropy"] = 1; }),
+                   "default_aniso_off");
+}
+
+// --- the filtering lesson: each sampler setting against a supersampled ground truth -----------------
+//
+// The grazing floor, its texture averaged over each pixel's footprint (16×16 rays per pixel,
+// level-0 bilinear lookups). Error per pixel = the largest channel difference in 1/255 (sRGB),
+// over floor pixels away from the silhouette. Anisotropic filtering must bring the picture closer
+// to the ground truth than plain trilinear filtering (an ordering, not a threshold).
+
+struct SamplerRow {
+    const char* name;
+    const char* sampler;
+    double mean = 0.0, p99 = 0.0;
+};
+
+TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
+    SamplerRow rows[] = {
+        {"nearest", R"({"filter": "nearest", "mipmaps": "none", "anisotropy": 1})"},
+        {"linear, no mipmaps", R"({"filter": "linear", "mipmaps": "none", "anisotropy": 1})"},
+        {"trilinear", R"({"anisotropy": 1})"},
+        {"trilinear + aniso 2", R"({"anisotropy": 2})"},
+        {"trilinear + aniso 4", R"({"anisotropy": 4})"},
+        {"trilinear + aniso 8", R"({"anisotropy": 8})"},
+        {"trilinear + aniso 16", R"({"anisotropy": 16})"},
+    };
+    const lab::Scene scene = lab::load_scene(floor_scene("truth", rows[0].sampler));
+    const ref::RefImage truth = ref::render_supersampled(scene, kWidth, kHeight, 16);
+    const lab::Image8 expected = ref::encode_srgb(truth);
+    ref::CompareOptions options;
+    options.grazing_cos = 0.0;
+    const std::vector<uint8_t> mask = ref::edge_mask(truth, options);
+    std::string table = "| sampler | mean error /255 | 99th percentile /255 |\n|---|---|---|\n";
+    for (SamplerRow& row : rows) {
+        const std::string name = std::string("truth_") + std::to_string(&row - rows);
+        const std::string png = render(floor_scene(name, row.sampler), name);
+        ASSERT_FALSE(png.empty());
+        const lab::Image8 actual = lab::read_png(png);
+        std::vector<int> errors;
+        for (size_t p = 0; p < mask.size(); ++p) {
+            if (mask[p] || truth.object_id[p] < 0) continue;
+            int e = 0;
+            for (int c = 0; c < 3; ++c) e = std::max(e, std::abs(int(actual.rgba[4 * p + c]) - int(expected.rgba[4 * p + c])));
+            errors.push_back(e);
+        }
+        ASSERT_GT(errors.size(), 10000u);
+        double sum = 0.0;
+        for (int e : errors) sum += e;
+        row.mean = sum / double(errors.size());
+        std::sort(errors.begin(), errors.end());
+        row.p99 = errors[errors.size() * 99 / 100];
+        char line[160];
+        std::snprintf(line, sizeof line, "| %s | %.2f | %.0f |\n", row.name, row.mean, row.p99);
+        table += line;
+    }
+    std::printf("[ lesson  ] error against the 16x16 supersampled ground truth, floor pixels:\n%s", table.c_str());
+    std::ofstream(kOutDir + "/sampler_errors.md") << table;
+    EXPECT_LT(rows[6].mean, rows[2].mean) << "anisotropy 16 should be closer to the ground truth than trilinear";
+    EXPECT_LT(rows[4].mean, rows[2].mean) << "anisotropy 4 should be closer to the ground truth than trilinear";
+    EXPECT_LT(rows[2].mean, rows[0].mean) << "trilinear should be closer to the ground truth than nearest without mipmaps";
+}
+
+// --- stress -------------------------------------------------------------------------------------
+
+TEST(Lab3Stress, HugeUvsWithRepeat) {
+    // uv' = uv + (1e6, −1e6): whole repeats are taken out of the offset (in double) before it
+    // reaches a float, so the picture is the offset-free one (the reference works in double).
+    expect_matches(plane_scene("huge_offset", R"({"albedo_map": ")" + tex("wood.png") + R"(", "uv_offset": [1e6, -1e6], )" +
+                                                  kAnisoOff + "}"),
+                   "huge_offset");
+    // uv' = uv · 1e6: a million repeats per unit; the LOD picks the 1×1 level, the map's average.
+    expect_matches(plane_scene("huge_scale", R"({"albedo_map": ")" + tex("tiles.png") + R"(", "uv_scale": [1e6, -1e6], )" +
+                                                 kAnisoOff + "}"),
+                   "huge_scale");
+}
+
+TEST(Lab3Stress, OneByOneTexture) {
+    lab::write_png(kOutDir + "/one.png", lab::Image8{1, 1, {200, 100, 50, 255}});
+    expect_matches(plane_scene("one_by_one", R"({"albedo_map": ")" + kOutDir + R"(/one.png", )" + kAnisoOff + "}"), "one_by_one");
+}
+
+TEST(Lab3Stress, Texture16384x1) {
+    lab::Image8 line{16384, 1, std::vector<uint8_t>(16384 * 4)};
+    for (int x = 0; x < 16384; ++x) {
+        line.rgba[size_t(x) * 4] = uint8_t((x * 7) & 255);
+        line.rgba[size_t(x) * 4 + 1] = uint8_t(x >> 6);
+        line.rgba[size_t(x) * 4 + 2] = 128;
+        line.rgba[size_t(x) * 4 + 3] = 255;
+    }
+    lab::write_png(kOutDir + "/line_16384x1.png", line);
+    const Verdict v = expect_matches(plane_scene("line", R"({"albedo_map": ")" + kOutDir + R"(/line_16384x1.png", )" + kAnisoOff + "}"), "line");
+    EXPECT_GT(v.minified, 10000u);
+}
+
+TEST(Lab3Stress, NonPowerOfTwoMipChain) {
+    // wood.png is 100×60: levels 50×30, 25×15, 12×7, 6×3, 3×1, 1×1. The GPU's blits of odd sizes
+    // filter differently from the reference's 2×2 box, so only the first levels are comparable:
+    // the check is no NaN, no validation message, and the numbers printed.
+    const std::string file = write_scene("npot", R"({"floor": {"albedo_map": ")" + tex("wood.png") +
+                                                     R"(", "uv_scale": [20, 20], "sampler": {"anisotropy": 1}}})",
+                                         R"([{"mesh": "plane", "material": "floor", "scale": [40, 1, 40]}])", kFloorCamera);
+    const std::string png = render(file, "npot");
+    ASSERT_FALSE(png.empty());
+    EXPECT_EQ(magenta_pixels(lab::read_png(png)), 0u);
+}
+
+TEST(Lab3Stress, DegenerateTriangleAndEdgeOnAnisotropy) {
+    // A zero-area triangle (collinear corners, UVs all different) next to a textured quad, and a
+    // second plane seen exactly edge-on with anisotropy 16: no NaN, no validation message, and
+    // the rest of the picture as the reference says.
+    std::ofstream(kOutDir + "/degenerate.obj") << "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nv 0 0 0\nv 0.5 0 0\nv 1 0 0\n"
+                                                  "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.3 0.9\nvn 0 1 0\n"
+                                                  "f 1/1/1 2/2/1 3/3/1 4/4/1\nf 5/1/1 6/3/1 7/5/1\n";
+    const std::string file =
+        write_scene("degenerate", R"({"m": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 1}},
+                                      "edge_on": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 16}}})",
+                    R"([{"mesh": ")" + kOutDir + R"(/degenerate.obj", "material": "m"},
+                        {"mesh": "plane", "material": "edge_on", "position": [0, 0.5, 0], "rotation_deg": [0, 0, 0], "scale": [3, 1, 3]}])",
+                    R"({"position": [0, 0.5, 2.5], "target": [0, 0.5, 0]})");
+    const std::string png = render(file, "degenerate");
+    ASSERT_FALSE(png.empty());
+    EXPECT_EQ(magenta_pixels(lab::read_png(png)), 0u);
+    const std::string tilted = write_scene("degenerate_ref", R"({"m": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 1}}})",
+                                           R"([{"mesh": ")" + kOutDir + R"(/degenerate.obj", "material": "m"}])");
+    expect_matches(tilted, "degenerate_ref");
+}
+
+// --- bad input ----------------------------------------------------------------------------------
+
+class Lab3HostileImage : public ::testing::TestWithParam<std::pair<std::string, std::string>> {};
+TEST_P(Lab3HostileImage, WarningCheckerboardExitZero) {
+    const auto& [file_name, reason] = GetParam();
+    const std::string dir = kOutDir + "/hostile", path = dir + "/" + file_name;
+    fs::create_directories(dir);
+    std::error_code ec;
+    fs::remove_all(path, ec);
+    lab::write_png(dir + "/good.png", lab::Image8{4, 4, std::vector<uint8_t>(64, 200)});
+    const std::string good = read_text(dir + "/good.png");
+    if (file_name == "truncated.png") std::ofstream(path) << good.substr(0, good.size() / 2);
+    if (file_name == "magic.png") std::ofstream(path) << "this is text, not a picture";
+    if (file_name == "empty.png") std::ofstream(path) << "";
+    if (file_name == "huge.png")  // the header claims 1e5 × 1e5 pixels (40 GB decoded)
+        std::ofstream(path) << good.substr(0, 16) << std::string("\x00\x01\x86\xa0\x00\x01\x86\xa0", 8) << good.substr(24);
+    if (file_name == "x.png") fs::create_directories(path);
+    // Albedo 1, ambient 1, nearest: the checkerboard's texels come out exactly magenta (255, 0, 255) and black.
+    const std::string scene = plane_scene("hostile_" + file_name.substr(0, file_name.find('.')),
+                                          R"({"albedo": [1, 1, 1], "albedo_map": ")" + path +
+                                              R"(", "sampler": {"filter": "nearest", "anisotropy": 1}})");
+    std::string text = read_text(scene);
+    text.replace(text.find(R"("nan_check": "on")"), 17, R"("nan_check": "off")");  // magenta is expected here
+    std::ofstream(scene) << text;
+    const RunResult r = run(scene, "hostile_check_" + file_name);
+    EXPECT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_NE(r.log.find("warning: " + path + ": " + reason), std::string::npos) << r.log;
+    size_t warnings = 0;
+    for (size_t at = 0; (at = r.log.find("warning:", at)) != std::string::npos; ++at) ++warnings;
+    EXPECT_EQ(warnings, 1u) << r.log;
+    expect_matches(scene, "hostile_" + file_name, true, true);  // the checkerboard, as the reference draws it
+}
+INSTANTIATE_TEST_SUITE_P(Files, Lab3HostileImage,
+                         ::testing::Values(std::make_pair("truncated.png", "corrupt image"),
+                                           std::make_pair("magic.png", "not an image"),
+                                           std::make_pair("empty.png", "not an image: the file is empty"),
+                                           std::make_pair("huge.png", "100000 × 100000 exceeds the device limit"),
+                                           std::make_pair("x.png", "cannot open: is a directory"),
+                                           std::make_pair("missing.png", "cannot open: No such file")),
+                         [](const auto& info) { return info.param.first.substr(0, info.param.first.find('.')); });
+
+TEST(Lab3BadInput, UnknownProceduralIsExit2) {
+    const std::string scene = plane_scene("bad_procedural", R"({"albedo_map": "procedural:marble"})");
+    const RunResult r = run(scene, "bad_procedural");
+    EXPECT_EQ(r.exit_code, 2) << r.log;
+    EXPECT_NE(r.log.find(scene + ": materials.m.albedo_map: unknown procedural texture 'marble'"), std::string::npos) << r.log;
+    EXPECT_FALSE(fs::exists(kOutDir + "/bad_procedural.png"));
+}
+
+TEST(Lab3Render, SharedImagesAndIdenticalSamplersAreUploadedOnce) {
+    // Three materials: two name the same image with the same sampler, one another sampler on a
+    // procedural map: 2 images, 2 samplers.
+    const std::string scene = write_scene(
+        "sharing", R"({"a": {"albedo_map": ")" + tex("bricks.png") + R"("}, "b": {"albedo_map": ")" + tex("bricks.png") +
+                       R"(", "albedo": [0.5, 0.5, 1]}, "c": {"albedo_map": "procedural:checker", "sampler": {"filter": "nearest"}}})",
+        R"([{"mesh": "cube", "material": "a", "position": [-1, 0, 0]}, {"mesh": "cube", "material": "b"},
+            {"mesh": "cube", "material": "c", "position": [1, 0, 0]}])");
+    const RunResult r = run(scene, "sharing");
+    EXPECT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_NE(r.log.find("textures: 2 images, 2 samplers for 3 materials with maps"), std::string::npos) << r.log;
+}
+
+}  // namespace

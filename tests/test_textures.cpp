@@ -1,0 +1,375 @@
+// test_textures.cpp — lab 3's texture inputs and the reference's sampling, without Vulkan:
+//  * the scene keys (albedo_map, ..., sampler, sampling, distortion) and their checks;
+//  * .mtl maps (map_Kd / map_Ks / map_Ke, backslash paths) becoming material maps;
+//  * common/texture_image: procedural sources from their formulas, hostile files → warning +
+//    checkerboard, size limits checked before decoding;
+//  * the lab's CPU mip fallback (common/texture.cpp) against the hand-computed 2×2 box;
+//  * tests/reference/cpu_texture: wrap modes, nearest/bilinear/trilinear and the LOD, against
+//    texel values computed by hand from the Vulkan specification's formulas.
+#include "reference/cpu_reference.h"
+#include "reference/cpu_texture.h"
+#include "image_io.h"
+#include "scene.h"
+#include "lab_runner.h"
+#include "temp_dir.h"
+#include "texture.h"
+#include "texture_image.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+lab::MaterialDesc material(const std::string& body, const std::string& base = "/scenes") {
+    const lab::Scene s = lab::parse_scene(R"({"materials": {"m": )" + body + R"(}, "objects": []})", "s.json", base);
+    return s.materials.at("m");
+}
+
+std::string error_of(const std::string& body) {
+    try {
+        material(body);
+    } catch (const lab::SceneError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected a SceneError for " << body;
+    return "";
+}
+
+const uint8_t* pixel(const lab::Image8& image, int x, int y) {
+    return &image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
+}
+
+bool is_fallback(const lab::Image8& image) {
+    return image.width == 8 && image.height == 8 && pixel(image, 0, 0)[0] == 255 && pixel(image, 0, 0)[1] == 0 &&
+           pixel(image, 0, 0)[2] == 255 && pixel(image, 1, 0)[0] == 0 && pixel(image, 1, 0)[2] == 0;
+}
+
+lab::Image8 solid(int w, int h, uint8_t v) { return lab::Image8{w, h, std::vector<uint8_t>(size_t(w) * size_t(h) * 4, v)}; }
+
+}  // namespace
+
+// --- scene keys ---------------------------------------------------------------
+
+TEST(TextureScene, DefaultsAreTheSeeds) {
+    const lab::MaterialDesc m = material("{}");
+    EXPECT_FALSE(m.has_maps());
+    EXPECT_EQ(m.sampler.filter, lab::SamplerDesc::Filter::Linear);
+    EXPECT_EQ(m.sampler.mipmaps, lab::SamplerDesc::Mipmaps::Linear);
+    EXPECT_EQ(m.sampler.anisotropy, 16);
+    EXPECT_EQ(m.sampler.wrap, lab::SamplerDesc::Wrap::Repeat);
+    EXPECT_FALSE(m.distorted);
+    EXPECT_EQ(m.distortion.amplitude, glm::vec2(0.02f, 0.015f));
+    EXPECT_EQ(m.distortion.frequency, glm::vec2(10.0f, 8.0f));
+    EXPECT_EQ(m.distortion.position_frequency, glm::vec2(2.0f, 1.5f));
+    EXPECT_EQ(m.distortion.scales, glm::vec2(2.0f, 0.5f));
+    EXPECT_EQ(m.distortion.weights, glm::vec2(0.3f, 0.2f));
+    EXPECT_EQ(m.uv_scale, glm::vec2(1.0f));
+    EXPECT_EQ(m.uv_offset, glm::vec2(0.0f));
+    EXPECT_EQ(m.emissive_strength, 1.0f);
+}
+
+TEST(TextureScene, EveryKeyIsRead) {
+    const lab::MaterialDesc m = material(R"({"albedo_map": "tex/a.png", "specular_map": "procedural:metal",
+        "emissive_map": "/abs/e.jpg", "emissive_strength": 2, "uv_scale": [4, 2], "uv_offset": [0.5, -1],
+        "sampler": {"filter": "nearest", "mipmaps": "none", "anisotropy": 4, "wrap": "mirror"},
+        "sampling": "distorted", "distortion": {"amplitude": [0.1, 0.2], "frequency": [1, 2],
+        "position_frequency": [3, 4], "scales": [5, 6], "weights": [0.5, 0.25]}})");
+    EXPECT_EQ(m.albedo_map, "/scenes/tex/a.png");  // relative to the scene file's folder
+    EXPECT_EQ(m.specular_map, "procedural:metal");
+    EXPECT_EQ(m.emissive_map, "/abs/e.jpg");
+    EXPECT_EQ(m.emissive_strength, 2.0f);
+    EXPECT_EQ(m.uv_scale, glm::vec2(4, 2));
+    EXPECT_EQ(m.uv_offset, glm::vec2(0.5f, -1));
+    EXPECT_EQ(m.sampler.filter, lab::SamplerDesc::Filter::Nearest);
+    EXPECT_EQ(m.sampler.mipmaps, lab::SamplerDesc::Mipmaps::None);
+    EXPECT_EQ(m.sampler.anisotropy, 4);
+    EXPECT_EQ(m.sampler.wrap, lab::SamplerDesc::Wrap::Mirror);
+    EXPECT_TRUE(m.distorted);
+    EXPECT_EQ(m.distortion.amplitude, glm::vec2(0.1f, 0.2f));
+    EXPECT_EQ(m.distortion.frequency, glm::vec2(1, 2));
+    EXPECT_EQ(m.distortion.position_frequency, glm::vec2(3, 4));
+    EXPECT_EQ(m.distortion.scales, glm::vec2(5, 6));
+    EXPECT_EQ(m.distortion.weights, glm::vec2(0.5f, 0.25f));
+}
+
+TEST(TextureScene, MistakesAreSceneErrors) {
+    const auto expect = [](const std::string& body, const std::string& path, const std::string& reason) {
+        const std::string e = error_of(body);
+        EXPECT_NE(e.find("s.json: " + path + ": "), std::string::npos) << e;
+        EXPECT_NE(e.find(reason), std::string::npos) << e;
+    };
+    expect(R"({"albedo_map": "procedural:chekcer"})", "materials.m.albedo_map", "did you mean 'checker'");
+    expect(R"({"albedo_map": 3})", "materials.m.albedo_map", "expected a string");
+    expect(R"({"albedo_map": ""})", "materials.m.albedo_map", "must not be empty");
+    expect(R"({"sampler": {"filtr": "linear"}})", "materials.m.sampler.filtr", "unknown key");
+    expect(R"({"sampler": {"wrap": "border"}})", "materials.m.sampler.wrap", "unknown wrap mode");
+    expect(R"({"sampler": {"anisotropy": 17}})", "materials.m.sampler.anisotropy", "[1, 16]");
+    expect(R"({"sampler": {"anisotropy": 2.5}})", "materials.m.sampler.anisotropy", "integer");
+    expect(R"({"sampler": {"mipmaps": true}})", "materials.m.sampler.mipmaps", "expected a string");
+    expect(R"({"sampling": "triple"})", "materials.m.sampling", "unknown sampling mode");
+    expect(R"({"uv_scale": [1, 2, 3]})", "materials.m.uv_scale", "2 numbers");
+    expect(R"({"uv_offset": [1, 2e7]})", "materials.m.uv_offset[1]", "1e6");
+    expect(R"({"emissive_strength": -1})", "materials.m.emissive_strength", ">= 0");
+    expect(R"({"distortion": {"weights": [0.3, 2]}})", "materials.m.distortion.weights[1]", "[0, 1]");
+    expect(R"({"distortion": {"amplitud": [0, 0]}})", "materials.m.distortion.amplitud", "unknown key");
+}
+
+TEST(TextureScene, MtlMapsBecomeMaterialMaps) {
+    TempDir dir;
+    dir.write("tex/albedo.png", "x");  // existence is all the loader checks; decoding is the lab's job
+    dir.write("tex/spec.png", "x");
+    dir.write("glow.tga", "x");
+    dir.write("m.mtl", "newmtl a\nKd 1 1 1\nmap_Kd tex\\albedo.png\nmap_Ks tex\\spec.png\nmap_Ke glow.tga\n"
+                       "newmtl b\nKd 1 0 0\nmap_Kd missing.png\n");
+    dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 2 4 3\n");
+    const lab::Scene s = lab::parse_scene(R"({"materials": {}, "objects": [{"mesh": "m.obj"}]})", "s.json", dir.path().string());
+    const lab::MaterialDesc& a = s.materials.at("m.obj#a");
+    EXPECT_EQ(fs::path(a.albedo_map), (dir.path() / "tex/albedo.png").lexically_normal());
+    EXPECT_EQ(fs::path(a.specular_map), (dir.path() / "tex/spec.png").lexically_normal());
+    EXPECT_EQ(fs::path(a.emissive_map), (dir.path() / "glow.tga").lexically_normal());
+    EXPECT_FALSE(s.materials.at("m.obj#b").has_maps());  // missing: the loader warned, Kd only
+}
+
+// --- texture images -----------------------------------------------------------
+
+TEST(TextureImage, ProceduralSourcesFollowTheirFormulas) {
+    const lab::Image8 checker = lab::procedural_texture("checker");
+    ASSERT_EQ(checker.width, 8);
+    EXPECT_EQ(pixel(checker, 0, 0)[0], 255);
+    EXPECT_EQ(pixel(checker, 1, 0)[0], 64);
+    EXPECT_EQ(pixel(checker, 7, 7)[1], 255);
+    const lab::Image8 metal = lab::procedural_texture("metal");
+    ASSERT_EQ(metal.width, 256);
+    ASSERT_EQ(metal.height, 256);
+    EXPECT_EQ(pixel(metal, 0, 0)[0], 127);  // (sin 0 · cos 0 + 1)/2 · 255 = 127.5 → 127
+    // x = 16, y = 0: (sin 1.6 + 1)/2 · 255 = (0.99957 + 1)/2 · 255 = 254.945 → 254
+    EXPECT_EQ(pixel(metal, 16, 0)[2], 254);
+    // x = 16, y = 31: sin 1.6 · cos 3.1 = 0.99957 · (−0.99914) = −0.99871 → 0.1645 → 0
+    EXPECT_EQ(pixel(metal, 16, 31)[1], 0);
+    const lab::Image8 grid = lab::procedural_texture("grid");
+    EXPECT_EQ(std::vector<uint8_t>(pixel(grid, 0, 7), pixel(grid, 0, 7) + 4), (std::vector<uint8_t>{0, 200, 255, 255}));
+    EXPECT_EQ(std::vector<uint8_t>(pixel(grid, 33, 40), pixel(grid, 33, 40) + 4), (std::vector<uint8_t>{0, 200, 255, 255}));
+    EXPECT_EQ(std::vector<uint8_t>(pixel(grid, 34, 34), pixel(grid, 34, 34) + 4), (std::vector<uint8_t>{0, 0, 0, 255}));
+    EXPECT_EQ(std::vector<uint8_t>(pixel(grid, 31, 63), pixel(grid, 31, 63) + 4), (std::vector<uint8_t>{0, 0, 0, 255}));
+}
+
+TEST(TextureImage, ReadsPngBmpAndTga) {
+    TempDir dir;
+    lab::Image8 png = solid(3, 2, 0);
+    png.rgba[(1 * 3 + 2) * 4 + 0] = 200;
+    lab::write_png(dir.file("a.png"), png);
+    const lab::TextureLoad a = lab::load_texture_image(dir.file("a.png"), 16384);
+    EXPECT_EQ(a.warning, "");
+    EXPECT_EQ(a.image.width, 3);
+    EXPECT_EQ(pixel(a.image, 2, 1)[0], 200);
+    // A 2×1 24-bit BMP written by hand: bottom-up rows, BGR, rows padded to 4 bytes.
+    std::string bmp = "BM";
+    const auto u32 = [](uint32_t v) { return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; };
+    const auto u16 = [](uint16_t v) { return std::string{char(v), char(v >> 8)}; };
+    bmp += u32(54 + 8) + u32(0) + u32(54) + u32(40) + u32(2) + u32(1) + u16(1) + u16(24) + u32(0) + u32(8) + u32(2835) +
+           u32(2835) + u32(0) + u32(0);
+    bmp += std::string{char(10), char(20), char(30), char(40), char(50), char(60), 0, 0};
+    dir.write("b.bmp", bmp);
+    const lab::TextureLoad b = lab::load_texture_image(dir.file("b.bmp"), 16384);
+    ASSERT_EQ(b.warning, "");
+    ASSERT_EQ(b.image.width, 2);
+    EXPECT_EQ(pixel(b.image, 0, 0)[0], 30);  // R of the first pixel (stored B, G, R)
+    EXPECT_EQ(pixel(b.image, 1, 0)[2], 40);
+    // An uncompressed 1×1 TGA (type 2, 24-bit).
+    std::string tga(18, '\0');
+    tga[2] = 2;
+    tga[12] = 1;
+    tga[14] = 1;
+    tga[16] = 24;
+    tga += std::string{char(7), char(8), char(9)};
+    dir.write("c.tga", tga);
+    const lab::TextureLoad c = lab::load_texture_image(dir.file("c.tga"), 16384);
+    ASSERT_EQ(c.warning, "");
+    EXPECT_EQ(pixel(c.image, 0, 0)[0], 9);
+}
+
+// Every hostile file: one warning naming the file and the reason, the checkerboard, no throw.
+TEST(TextureImage, HostileFilesGiveTheCheckerboard) {
+    TempDir dir;
+    lab::Image8 small = solid(4, 4, 128);
+    lab::write_png(dir.file("ok.png"), small);
+    const std::string good = read_text(dir.file("ok.png"));
+    dir.write("truncated.png", good.substr(0, good.size() / 2));
+    dir.write("magic.png", "hello, this is not what the name says");
+    dir.write("empty.png", "");
+    // A PNG whose header claims 100000 × 100000 pixels (40 GB decoded): rejected from the header.
+    std::string huge = good.substr(0, 16);  // signature + IHDR length + "IHDR"
+    const auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+    huge += be32(100000) + be32(100000) + good.substr(24);
+    dir.write("huge.png", huge);
+    fs::create_directories(dir.path() / "x.png");
+    const struct {
+        std::string name, reason;
+    } cases[] = {{"truncated.png", "corrupt image"}, {"magic.png", "not an image"},
+                 {"empty.png", "not an image: the file is empty"},
+                 {"huge.png", "100000 × 100000 exceeds the device limit 16384"},
+                 {"x.png", "cannot open: is a directory"}, {"missing.png", "cannot open: No such file"}};
+    for (const auto& c : cases) {
+        const lab::TextureLoad load = lab::load_texture_image(dir.file(c.name), 16384);
+        EXPECT_TRUE(is_fallback(load.image)) << c.name;
+        EXPECT_EQ(load.warning.rfind(dir.file(c.name) + ": ", 0), 0u) << load.warning;
+        EXPECT_NE(load.warning.find(c.reason), std::string::npos) << load.warning;
+        EXPECT_EQ(load.warning.find('\n'), std::string::npos);
+        // The reference decides on its own that these files are unusable.
+        EXPECT_TRUE(ref::load_texture(dir.file(c.name), false).fallback) << c.name;
+    }
+}
+
+TEST(TextureImage, DeviceLimitIsCheckedBeforeDecoding) {
+    TempDir dir;
+    lab::write_png(dir.file("wide.png"), solid(16385, 4, 9));
+    const lab::TextureLoad load = lab::load_texture_image(dir.file("wide.png"), 16384);
+    EXPECT_NE(load.warning.find("16385 × 4 exceeds the device limit 16384"), std::string::npos) << load.warning;
+    EXPECT_TRUE(is_fallback(load.image));
+    lab::write_png(dir.file("line.png"), solid(16384, 1, 9));
+    const lab::TextureLoad line = lab::load_texture_image(dir.file("line.png"), 16384);
+    EXPECT_EQ(line.warning, "");
+    EXPECT_EQ(line.image.width, 16384);
+}
+
+// --- the lab's CPU mip fallback ----------------------------------------------------
+
+TEST(MipChain, LevelCountAndCpuBoxFilterInLinearColour) {
+    EXPECT_EQ(lab::mip_level_count(1, 1), 1u);
+    EXPECT_EQ(lab::mip_level_count(256, 256), 9u);
+    EXPECT_EQ(lab::mip_level_count(16384, 1), 15u);
+    EXPECT_EQ(lab::mip_level_count(5, 3), 3u);  // 5×3, 2×1, 1×1
+    // Black and white average to linear 0.5 = sRGB 0.7354 → 188 (not 128: the mean is taken in linear light).
+    lab::Image8 bw = solid(2, 2, 0);
+    for (int c = 0; c < 3; ++c) bw.rgba[size_t(c)] = bw.rgba[12 + size_t(c)] = 255;
+    bw.rgba[3] = bw.rgba[7] = bw.rgba[11] = bw.rgba[15] = 255;
+    const lab::Image8 next = lab::downsample_srgb(bw);
+    ASSERT_EQ(next.width, 1);
+    EXPECT_EQ(pixel(next, 0, 0)[0], 188);
+    EXPECT_EQ(pixel(next, 0, 0)[3], 255);
+    const lab::Image8 odd = lab::downsample_srgb(solid(5, 3, 77));
+    EXPECT_EQ(odd.width, 2);
+    EXPECT_EQ(odd.height, 1);
+    EXPECT_EQ(pixel(odd, 1, 0)[1], 77);
+}
+
+// --- the reference's sampling, by hand ---------------------------------------------
+
+TEST(ReferenceSampling, WrapModes) {
+    using W = lab::SamplerDesc::Wrap;
+    // size 4: repeat −1 → 3, 4 → 0; mirror: … 1 0 | 0 1 2 3 | 3 2 …; clamp to [0, 3].
+    EXPECT_EQ(ref::wrap_texel(-1, 4, W::Repeat), 3);
+    EXPECT_EQ(ref::wrap_texel(4, 4, W::Repeat), 0);
+    EXPECT_EQ(ref::wrap_texel(-9, 4, W::Repeat), 3);
+    EXPECT_EQ(ref::wrap_texel(-1, 4, W::Mirror), 0);
+    EXPECT_EQ(ref::wrap_texel(-2, 4, W::Mirror), 1);
+    EXPECT_EQ(ref::wrap_texel(4, 4, W::Mirror), 3);
+    EXPECT_EQ(ref::wrap_texel(5, 4, W::Mirror), 2);
+    EXPECT_EQ(ref::wrap_texel(8, 4, W::Mirror), 0);
+    EXPECT_EQ(ref::wrap_texel(-5, 4, W::Clamp), 0);
+    EXPECT_EQ(ref::wrap_texel(7, 4, W::Clamp), 3);
+}
+
+namespace {
+// A 2×2 texture of sRGB 0, 255 / 255, 0 in red: linear texels 0, 1 / 1, 0.
+ref::RefTexture two_by_two(bool mipmaps) {
+    return ref::make_texture(2, 2, {0, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255, 0, 0, 0, 255}, mipmaps);
+}
+}  // namespace
+
+TEST(ReferenceSampling, NearestAndBilinearAtHandPickedPoints) {
+    using F = lab::SamplerDesc::Filter;
+    using W = lab::SamplerDesc::Wrap;
+    const ref::RefTexture t = two_by_two(false);
+    const ref::TextureLevel& l = t.levels[0];
+    // Texel centres are at (i + ½)/2: u = 0.25 is texel 0's centre.
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.25, 0.25}, F::Linear, W::Repeat).r, 0.0);
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.75, 0.25}, F::Linear, W::Repeat).r, 1.0);
+    // Halfway between centres: the mean of the four (two 1s, two 0s).
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.5, 0.5}, F::Linear, W::Repeat).r, 0.5);
+    // u = 0.375 (x = 0.75 − 0.5 = 0.25 past texel 0), v = 0.25: 0.75·0 + 0.25·1.
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.375, 0.25}, F::Linear, W::Repeat).r, 0.25);
+    // At u = 0 repeat blends texel 1 (left neighbour, value 1) and texel 0 half and half;
+    // clamp sees only texel 0; mirror reflects texel 0 onto itself.
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.0, 0.25}, F::Linear, W::Repeat).r, 0.5);
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.0, 0.25}, F::Linear, W::Clamp).r, 0.0);
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.0, 0.25}, F::Linear, W::Mirror).r, 0.0);
+    // Nearest: floor(u·2).
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.49, 0.1}, F::Nearest, W::Repeat).r, 0.0);
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {0.5, 0.1}, F::Nearest, W::Repeat).r, 1.0);
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {-0.1, 0.1}, F::Nearest, W::Repeat).r, 1.0);   // texel −1 → 1
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {1.1, 0.1}, F::Nearest, W::Mirror).r, 1.0);    // texel 2 → 1
+    EXPECT_DOUBLE_EQ(ref::sample_level(l, {1.1, 0.1}, F::Nearest, W::Clamp).r, 1.0);
+    // Huge coordinates with repeat: 1e6 + 0.25 is texel 0's centre again.
+    EXPECT_NEAR(ref::sample_level(l, {1e6 + 0.25, 0.25}, F::Linear, W::Repeat).r, 0.0, 1e-9);
+}
+
+TEST(ReferenceSampling, MipChainIsALinearBox) {
+    const ref::RefTexture t = two_by_two(true);
+    ASSERT_EQ(t.levels.size(), 2u);
+    EXPECT_DOUBLE_EQ(t.levels[1].at(0, 0).r, 0.5);  // linear mean; sRGB 188 when encoded
+    // sRGB 128 decodes to 0.21586 (the spec's transfer function).
+    EXPECT_NEAR(ref::make_texture(1, 1, {128, 128, 128, 255}, false).levels[0].at(0, 0).g, 0.2158605, 1e-6);
+    const ref::RefTexture odd = ref::make_texture(3, 1, {0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255}, true);
+    ASSERT_EQ(odd.levels.size(), 2u);  // 3×1 → 1×1
+    EXPECT_EQ(odd.levels[1].width, 1);
+    EXPECT_DOUBLE_EQ(odd.levels[1].at(0, 0).r, 0.5);  // texels 0 and 1 (the 2×2 box of the top-left)
+}
+
+TEST(ReferenceSampling, LodAndTrilinear) {
+    const ref::RefTexture t = ref::make_texture(4, 4, std::vector<unsigned char>(64, 255), true);
+    // One pixel step moves u by 1/4 = one texel: ρ = 1, λ = 0. Two texels: λ = 1.
+    EXPECT_DOUBLE_EQ(ref::lod(t.levels[0], {0.25, 0}, {0, 0.25}), 0.0);
+    EXPECT_DOUBLE_EQ(ref::lod(t.levels[0], {0.5, 0}, {0, 0.1}), 1.0);
+    EXPECT_DOUBLE_EQ(ref::lod(t.levels[0], {0.3, 0.4}, {0, 0}), std::log2(2.0));  // |(1.2, 1.6)| = 2
+    // Trilinear between levels 0 (4×4) and 1 (2×2) of a texture whose levels differ.
+    std::vector<unsigned char> px;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) px.insert(px.end(), {(unsigned char)((x < 2) == (y < 2) ? 255 : 0), 0, 0, 255});
+    const ref::RefTexture q = ref::make_texture(4, 4, px, true);  // 2×2 quadrants: level 1 = same quadrants
+    ASSERT_EQ(q.levels.size(), 3u);
+    EXPECT_DOUBLE_EQ(q.levels[1].at(0, 0).r, 1.0);
+    EXPECT_DOUBLE_EQ(q.levels[1].at(1, 0).r, 0.0);
+    EXPECT_DOUBLE_EQ(q.levels[2].at(0, 0).r, 0.5);
+    lab::SamplerDesc s;
+    s.anisotropy = 1;
+    // λ = log2(3) = 1.585 at the centre of texel (0,0) of level 1 (u = 0.25): level 1 gives 1,
+    // level 2 gives 0.5, weight 0.585: 1 − 0.585·0.5 = 0.7075.
+    const double lambda = std::log2(3.0), expected = 1.0 - (lambda - 1.0) * 0.5;
+    EXPECT_NEAR(ref::sample(q, s, {0.25, 0.25}, {0.75, 0}, {0, 0}).r, expected, 1e-12);
+    s.mipmaps = lab::SamplerDesc::Mipmaps::Nearest;  // ceil(1.585 + 0.5) − 1 = 2: level 2 only
+    EXPECT_DOUBLE_EQ(ref::sample(q, s, {0.25, 0.25}, {0.75, 0}, {0, 0}).r, 0.5);
+    s.mipmaps = lab::SamplerDesc::Mipmaps::None;  // level 0, bilinear at texel (0,0)'s far corner
+    EXPECT_DOUBLE_EQ(ref::sample(q, s, {0.25, 0.25}, {0.75, 0}, {0, 0}).r, 1.0);
+}
+
+// --- the sampler cache (a real device, validation on) ---------------------------------------
+
+TEST(SamplerCache, IdenticalSettingsShareOneSampler) {
+    int messages = 0;
+    lab::ContextOptions options;
+    options.validate = true;
+    options.message_count = &messages;
+    lab::VulkanContext vk(options);
+    {
+        lab::SamplerCache cache(vk);
+        lab::SamplerDesc a, b, c;
+        c.wrap = lab::SamplerDesc::Wrap::Mirror;
+        const VkSampler sa = cache.get(a), sb = cache.get(b), sc = cache.get(c);
+        EXPECT_EQ(sa, sb);
+        EXPECT_NE(sa, sc);
+        EXPECT_EQ(cache.size(), 2u);
+        // Anisotropy never exceeds the device's limit (or 1 without the feature).
+        const float limit = vk.enabled_features().samplerAnisotropy ? vk.properties().limits.maxSamplerAnisotropy : 1.0f;
+        EXPECT_EQ(cache.effective_anisotropy(16), std::min(16.0f, limit));
+        EXPECT_EQ(cache.effective_anisotropy(1), 1.0f);
+        EXPECT_EQ(cache.warnings().size(), limit < 16.0f ? 1u : 0u);
+    }
+    EXPECT_EQ(messages, 0);
+}
