@@ -82,9 +82,23 @@ soak_lab() {
   for _ in $(seq 100); do [[ -s "$work/display" ]] && break; sleep 0.1; done
   [[ -s "$work/display" ]] || { fail "Xvfb did not start: $(tail -2 "$work/xvfb.log")"; cleanup_lab; return 1; }
   export DISPLAY=":$(cat "$work/display")"
-  openbox --sm-disable >"$work/openbox.log" 2>&1 &
-  wm_pid=$!
-  for _ in $(seq 100); do xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q "window id" && break; sleep 0.1; done
+  # -displayfd can name the display a moment before it takes connections (seen under load with
+  # several servers starting at once): wait until a client gets in, then start the window manager,
+  # and start it again if it gave up before the server answered.
+  for _ in $(seq 100); do xprop -root >/dev/null 2>&1 && break; sleep 0.1; done
+  local wm_up=""
+  for _ in 1 2 3; do
+    openbox --sm-disable >"$work/openbox.log" 2>&1 &
+    wm_pid=$!
+    for _ in $(seq 100); do
+      xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q "window id" && { wm_up=1; break; }
+      kill -0 "$wm_pid" 2>/dev/null || break
+      sleep 0.1
+    done
+    [[ -n "$wm_up" ]] && break
+    kill "$wm_pid" 2>/dev/null; wait "$wm_pid" 2>/dev/null
+  done
+  [[ -n "$wm_up" ]] || { fail "openbox did not start: $(tail -2 "$work/openbox.log")"; cleanup_lab; return 1; }
 
   # The lab's own scene, in a folder of its own (models/ and textures/ linked), and the variants it cycles through.
   local scenes="$work/scenes"

@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -44,16 +43,33 @@ std::vector<Marker> scan_markers(const fs::path& root) {
         }
     }
     std::sort(files.begin(), files.end());
-    static const std::regex marker(R"(// (TODO )?EXERCISE ([a-z0-9_]+): (.*?)(?: Checked by (.+)\.)?$)");
     std::vector<Marker> markers;
     for (const fs::path& file : files) {
         std::ifstream in(file);
         std::string text;
         for (int line = 1; std::getline(in, text); ++line) {
-            std::smatch m;
-            if (!std::regex_search(text, m, marker)) continue;
-            Marker mk{m[2], fs::relative(file, root).string(), m[3], line, m[1].matched, {}};
-            std::string tests = m[4];
+            // "// [TODO ]EXERCISE name: hint[ Checked by A.B, C.*.]"
+            size_t at = text.find("// EXERCISE ");
+            bool stub = false;
+            if (at == std::string::npos) {
+                at = text.find("// TODO EXERCISE ");
+                if (at == std::string::npos) continue;
+                stub = true;
+            }
+            const size_t name_at = text.find("EXERCISE ", at) + 9;
+            const size_t colon = text.find(": ", name_at);
+            if (colon == std::string::npos) continue;
+            const std::string name = text.substr(name_at, colon - name_at);
+            if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
+                continue;
+            std::string hint = text.substr(colon + 2), tests;
+            const size_t checked = hint.find(" Checked by ");
+            if (checked != std::string::npos) {
+                tests = hint.substr(checked + 12);
+                hint.erase(checked);
+                if (!tests.empty() && tests.back() == '.') tests.pop_back();
+            }
+            Marker mk{name, fs::relative(file, root).string(), hint, line, stub, {}};
             std::replace(tests.begin(), tests.end(), ',', ' ');
             std::istringstream words(tests);
             for (std::string t; words >> t;) mk.tests.push_back(t);
