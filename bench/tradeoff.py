@@ -6,8 +6,8 @@
 For every configuration in the lab's knob table (KNOBS below) the script writes a scene
 file, runs the lab headless with --benchmark (LP_NUM_THREADS fixed; the same process
 writes its last frame to a PNG) and compares that PNG with the ideal reference
-(`lab_reference --ideal`: exact curved surfaces, per-pixel exact normals) using
-`lab_compare`. Rounds are interleaved (all configurations, then all again, in another
+(`lab_reference --ideal`: exact curved surfaces, per-pixel exact normals; lab 3: the
+supersampled texture, `lab_reference --supersample 16`) using `lab_compare`. Rounds are interleaved (all configurations, then all again, in another
 order) so that load on the shared machine hits every configuration alike.
 
 Two costs per configuration: the wall-clock frame time of --benchmark (median of the
@@ -21,7 +21,8 @@ Writes OUT_DIR/LAB.csv and OUT_DIR/LAB.png (time against error, the Pareto front
 the default and the seeds' configurations labelled), and in a full run the README
 heatmaps. --quick: a handful of configurations at 320×180 with validation on, written to
 build/tradeoff_quick/, then checks that the CSV is well-formed and that the error grows
-when the tessellation drops (exit code 1 otherwise). CTest runs it.
+when the tessellation drops (lab 3: that trilinear filtering beats nearest) (exit code 1
+otherwise). CTest runs it.
 
 To add a lab: write a function returning its configurations (see lab1_configs) and add
 it to KNOBS; groups with "front": True get a Pareto front.
@@ -411,14 +412,19 @@ def plot(lab, configs, path, title_note):
             panels.append((group, cs, "count"))
         else:
             panels.append((group, cs, "bars"))
-    ratios = [1.5 if kind in ("front", "zoom", "labelled") else 1.0 for _, _, kind in panels]
+    ratios = [1.5 if kind in ("front", "zoom") else 2.0 if kind == "labelled" else 1.0 for _, _, kind in panels]
     fig, axes = plt.subplots(1, len(panels), figsize=(5.6 * sum(ratios), 5.6), squeeze=False,
                              gridspec_kw={"width_ratios": ratios})
     for ax, (group, cs, kind) in zip(axes[0], panels):
         {"front": plot_front, "zoom": plot_front, "labelled": plot_front, "count": plot_count,
          "bars": plot_bars}[kind](ax, group, cs, kind)
         if kind == "labelled":
+            from matplotlib.ticker import ScalarFormatter
             ax.set_ylabel(f"mean |error| vs {KNOBS[lab].get('truth_name', 'ideal')} (1/255, log)")
+            for axis in (ax.xaxis, ax.yaxis):  # plain numbers on the log axes
+                axis.set_major_formatter(ScalarFormatter())
+                axis.set_minor_formatter(ScalarFormatter())
+            ax.tick_params(which="minor", labelsize=7)
     fig.suptitle(f"{lab}: time against error\n{title_note}", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=90)
@@ -449,6 +455,11 @@ def plot_front(ax, group, cs, kind):
                     elinewidth=0.8, capsize=2)
         if c["default"]:
             ax.scatter([c["cpu_ms"]], [err(c)], s=170, facecolors="none", edgecolors="red", linewidths=1.6, zorder=4)
+    if kind == "labelled":
+        label_clusters(ax, cs)
+    for c in cs:
+        if kind == "labelled":
+            continue
         if not c["series"] and kind == "front":
             continue  # labelled in the zoomed panel
         text = str(c["knob"]) if c["series"] else c["config"]
@@ -475,6 +486,27 @@ def plot_front(ax, group, cs, kind):
     ax.set_ylabel("mean |error| vs ideal (1/255, log)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="upper right")
+
+
+def label_clusters(ax, cs):
+    """Labels every configuration; those with the same error (the same picture: lab 3's
+    anisotropy 2 … 16 on lavapipe) and about the same cost share one label."""
+    clusters = []
+    for c in sorted(cs, key=lambda c: c["cpu_ms"]):
+        for cl in clusters:
+            if err(cl[0]) == err(c) and abs(cl[0]["cpu_ms"] - c["cpu_ms"]) < 0.2 * cl[0]["cpu_ms"]:
+                cl.append(c)
+                break
+        else:
+            clusters.append([c])
+    for cl in clusters:
+        cl.sort(key=lambda c: cs.index(c))
+        lines = [c["config"] + (" (default)" if c["default"] else "") + (f" = {c['seed']}" if c["seed"] else "")
+                 for c in cl]
+        special = any(c["default"] or c["seed"] for c in cl)
+        x = statistics.median(c["cpu_ms"] for c in cl)
+        ax.annotate("\n".join(lines), (x, err(cl[0])), textcoords="offset points", xytext=(-8, 8), ha="right",
+                    fontsize=8, color="darkred" if special else "black")
 
 
 def plot_count(ax, group, cs, kind):
