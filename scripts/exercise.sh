@@ -128,6 +128,8 @@ prove() {
   IFS=';' read -r -a graded_targets <<<"$GRADED_TARGETS"
   IFS=';' read -r -a runners <<<"$RUNNER_BINARIES"
   IFS=';' read -r -a graded_bins <<<"$GRADED_BINARIES"
+  local -a variants=()
+  IFS=';' read -r -a variants <<<"${SHADER_VARIANTS:-}"
   local f failures=0
 
   # The lab's files in $g/src, written only where they differ (make rebuilds only what changed).
@@ -152,6 +154,13 @@ prove() {
       [ -e "$s" ] || continue
       "$GLSLANG" -V --target-env vulkan1.1 -o "$g/shaders/$lab/$(basename "$s").spv" "$s" >>"$log" 2>&1 ||
         { echo "grader: $s does not compile (see $log)"; return 1; }
+    done
+    local variant vname vdefine vsrc
+    for variant in "${variants[@]}"; do  # lab_add_shaders(... VARIANT src name DEFINE): src with -DDEFINE
+      IFS=: read -r vname vdefine vsrc <<<"$variant"
+      s="$g/src/shaders/$lab/$(basename "$vsrc")"
+      "$GLSLANG" -V --target-env vulkan1.1 "-D$vdefine" -o "$g/shaders/$lab/$vname.spv" "$s" >>"$log" 2>&1 ||
+        { echo "grader: $s with $vdefine does not compile (see $log)"; return 1; }
     done
     "$CMAKE" --build "$build" --target "${graded_targets[@]}" -j2 >>"$log" 2>&1 ||
       { echo "grader: building ${graded_targets[*]} failed (see $log)"; return 1; }

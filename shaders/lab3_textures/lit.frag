@@ -26,19 +26,28 @@ layout(set = 1, binding = 2) uniform sampler2D emissive_map;
 // line up, so the tiling is much harder to see.
 vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
     if (!DISTORTED) return texture(albedo_map, uv).rgb;
+    // EXERCISE distorted_uv: with (u, v) = uv, amplitude (k0.xy), frequency (k0.zw), position_frequency (k1.xy), scales (k1.zw) and weights (k2.xy): d = uv + (k0.x·sin(k0.z·v + k1.x·P.y), k0.y·cos(k0.w·u + k1.y·P.x)), then mix(mix(A(d), A(k1.z·uv), k2.x), A(k1.w·uv), k2.y). Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers.
+    // STUB: return texture(albedo_map, uv).rgb;  // no distortion: the tiling shows as plainly as without it
     const vec4 k0 = m.distortion[0], k1 = m.distortion[1], k2 = m.distortion[2];
     const vec2 d = uv + vec2(k0.x * sin(k0.z * uv.y + k1.x * P.y), k0.y * cos(k0.w * uv.x + k1.y * P.x));
     const vec3 t0 = texture(albedo_map, d).rgb, t1 = texture(albedo_map, k1.z * uv).rgb;
     return mix(mix(t0, t1, k2.x), texture(albedo_map, k1.w * uv).rgb, k2.y);
+    // END EXERCISE
 }
 
 // a = albedo·A(uv'), s = specular·S(uv'), e = emissive + emissive_strength·E(uv') with
 // uv' = uv·uv_scale + uv_offset; a map the material lacks is not sampled at all.
 Material textured(Material m, vec2 uv, vec3 P) {
+    // EXERCISE uv_transform: uv' = uv·uv_scale + uv_offset, with uv_transform = (scale.x, scale.y, offset.x, offset.y). Checked by Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
+    // STUB: // the UVs as they are: no tiling, no shift
     uv = uv * m.uv_transform.xy + m.uv_transform.zw;
+    // END EXERCISE
+    // EXERCISE texture_terms: albedo ×= A(uv) (albedo_texel), specular ×= S(uv), emissive += emissive_strength (distortion[2].z)·E(uv), each only if the material has that map (ALBEDO_MAP, ...). Checked by Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
+    // STUB: // the maps are not read: every textured material shows its plain colours
     if (ALBEDO_MAP) m.albedo.rgb *= albedo_texel(m, uv, P);
     if (SPECULAR_MAP) m.specular.rgb *= texture(specular_map, uv).rgb;
     if (EMISSIVE_MAP) m.emissive.rgb += m.distortion[2].z * texture(emissive_map, uv).rgb;
+    // END EXERCISE
     return m;
 }
 
