@@ -12,8 +12,9 @@
 #include <system_error>
 
 #define STB_IMAGE_STATIC
+// labcore's one stb_image implementation (every format: texture_image.cpp decodes the labs'
+// maps with it; read_png() below checks the PNG signature itself).
 #define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG  // we only ever read PNGs
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #pragma GCC diagnostic push  // third-party code: not our warnings to fix
