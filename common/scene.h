@@ -35,6 +35,18 @@ struct AmbientDesc {
     float intensity = 0.1f;
 };
 
+// Lab 4: one light's shadow map (docs/scene-format.md, "shadow"). The defaults are the ones
+// lab4_shadows/README.md measures as the best time against error.
+struct ShadowDesc {
+    enum class Filter { Nearest, Bilinear };  // manual depth compare | comparison sampler (2×2 per tap)
+    int resolution = 2048;       // texels per side (per cube face for a point light)
+    int pcf = 3;                 // an N×N kernel, N odd; 1 = a single tap
+    Filter filter = Filter::Bilinear;
+    float bias = 1.0f;           // constant depth bias of the shadow pass (vkCmdSetDepthBias)
+    float slope_bias = 1.5f;     // slope-scaled depth bias of the shadow pass
+    float normal_offset = 1.0f;  // lookup point moved along the normal, in shadow-map texels
+};
+
 struct LightDesc {
     enum class Type { Directional, Point, Spot };
     Type type = Type::Directional;
@@ -45,6 +57,8 @@ struct LightDesc {
     glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // [constant, linear, quadratic]
     float inner_deg = 12.5f;
     float outer_deg = 17.5f;
+    bool cast_shadows = false;  // lab 4
+    ShadowDesc shadow;
 };
 
 // Lab 3: how a texture is read (docs/scene-format.md, "sampler"). The default is the seed's:
@@ -93,6 +107,7 @@ struct MaterialDesc {
     std::string specular_map;
     std::string emissive_map;
     float emissive_strength = 1.0f;  // e = emissive + emissive_strength · E(uv)
+    float opacity = 1.0f;            // lab 4: < 1 is translucent (blended α, 1 − α; shadows let 1 − α through)
     glm::vec2 uv_scale{1.0f};        // uv' = uv · uv_scale + uv_offset
     glm::vec2 uv_offset{0.0f};
     SamplerDesc sampler;
@@ -137,6 +152,7 @@ struct ObjectDesc {
     int rings = 0;
     float crease_deg = 60.0f;  // file meshes without normals: split vertices at sharper edges
     bool normalize = false;    // file meshes: fit into a unit box centered at the origin
+    bool cast_shadows = true;  // lab 4: drawn into the shadow maps of shadow-casting lights
 };
 
 struct Scene {
