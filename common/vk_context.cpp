@@ -110,7 +110,8 @@ VulkanContext::~VulkanContext() { release(); }
 void VulkanContext::release() {
     if (device_) {
         vkDeviceWaitIdle(device_);
-        if (upload_pool_) vkDestroyCommandPool(device_, upload_pool_, nullptr);
+        if (upload_fence_) vkDestroyFence(device_, upload_fence_, nullptr);
+        if (upload_pool_) vkDestroyCommandPool(device_, upload_pool_, nullptr);  // frees upload_cmd_
         allocator_.reset();
         vkDestroyDevice(device_, nullptr);
     }
@@ -126,6 +127,8 @@ void VulkanContext::release() {
     messenger_ = VK_NULL_HANDLE;
     instance_ = VK_NULL_HANDLE;
     upload_pool_ = VK_NULL_HANDLE;
+    upload_cmd_ = VK_NULL_HANDLE;
+    upload_fence_ = VK_NULL_HANDLE;
 }
 
 VkBool32 VulkanContext::on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
@@ -296,6 +299,14 @@ void VulkanContext::create_device() {
     pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pool.queueFamilyIndex = queue_family_;
     VK_CHECK(vkCreateCommandPool(device_, &pool, nullptr, &upload_pool_));
+    // run_once's command buffer and fence, made once and reused by every upload.
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = upload_pool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VK_CHECK(vkAllocateCommandBuffers(device_, &alloc, &upload_cmd_));
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &upload_fence_));
 }
 
 // Test-only (LAB_TEST_VALIDATION_PROBE): one mistake each check of --validate must report, so a
@@ -334,29 +345,21 @@ uint32_t VulkanContext::find_memory_type(uint32_t type_bits, VkMemoryPropertyFla
 }
 
 void VulkanContext::run_once(const std::function<void(VkCommandBuffer)>& record) const {
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = upload_pool_;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd;
-    VK_CHECK(vkAllocateCommandBuffers(device_, &alloc, &cmd));
-    Handle<VkCommandBuffer> owner(cmd, [this](VkCommandBuffer c) { vkFreeCommandBuffers(device_, upload_pool_, 1, &c); });
-
+    // The previous upload has finished (we waited for it): resetting the pool makes its one
+    // command buffer ready to record again (cheaper than resetting buffers one by one).
+    VK_CHECK(vkResetCommandPool(device_, upload_pool_, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    record(cmd);
-    VK_CHECK(vkEndCommandBuffer(cmd));
+    VK_CHECK(vkBeginCommandBuffer(upload_cmd_, &begin));
+    record(upload_cmd_);
+    VK_CHECK(vkEndCommandBuffer(upload_cmd_));
 
-    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence fence;
-    VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &fence));
-    Handle<VkFence> fence_owner(fence, [this](VkFence f) { vkDestroyFence(device_, f, nullptr); });
+    VK_CHECK(vkResetFences(device_, 1, &upload_fence_));
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    VK_CHECK(vkQueueSubmit(queue_, 1, &submit, fence));
-    VK_CHECK(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
+    submit.pCommandBuffers = &upload_cmd_;
+    VK_CHECK(vkQueueSubmit(queue_, 1, &submit, upload_fence_));
+    VK_CHECK(vkWaitForFences(device_, 1, &upload_fence_, VK_TRUE, UINT64_MAX));
 }
 
 }  // namespace lab

@@ -49,8 +49,12 @@ public:
     MemoryAllocator& allocator() const { return *allocator_; }
     VkFormat depth_format() const { return depth_format_; }
 
-    // Records commands into a one-time command buffer, submits and waits.
-    // For uploads and readbacks — never inside the frame loop.
+    // Records commands into the context's upload command buffer, submits and waits.
+    // For uploads and readbacks — never inside the frame loop. The one command buffer is
+    // recycled (its pool reset) on every call instead of allocating and freeing one per call:
+    // that is the usual pattern, and Debian 12's validation layer (1.3.239, synchronization
+    // validation) keeps about 3 KB for every command buffer freed, which made a scene reload
+    // (two uploads per mesh) leak memory (docs/testing.md, "Window soak").
     void run_once(const std::function<void(VkCommandBuffer)>& record) const;
 
     // Validation messages (warnings and errors) seen so far, less the filtered ones
@@ -88,6 +92,8 @@ private:
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
     VkCommandPool upload_pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer upload_cmd_ = VK_NULL_HANDLE;  // run_once's, freed with the pool
+    VkFence upload_fence_ = VK_NULL_HANDLE;        // run_once's
     std::unique_ptr<MemoryAllocator> allocator_;  // given back before the device is destroyed
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
