@@ -9,7 +9,9 @@
 # window resizes (to 1×1 and back included), minimize + restore, camera keys (W A S D, Space,
 # Shift), mouse drags and wheel steps, the camera-mode key (C), the reload key (R), and rewrites
 # of the scene file that alternate a good and a broken scene; the good ones add and remove an
-# object and, from lab 2 on, add and remove lights (down to none).
+# object and, from lab 2 on, add and remove lights (down to none); from lab 4 on they also switch
+# every light's shadow off and on (with other PCF, filter and map size), take every object's
+# shadow away and make every material translucent.
 #
 # Every input must be answered within SOAK_ANSWER_S seconds (default 10): the lab's status file
 # (LAB_STATUS_FILE, common/status_file.h) shows a frame drawn after the input — after a resize, at
@@ -119,6 +121,15 @@ soak_lab() {
     jq '.lights = []' "$base" >"$scenes/good_no_lights.json"
     goods+=("$scenes/good_light_added.json" "$base" "$scenes/good_two_added.json" "$scenes/good_light_removed.json"
             "$scenes/good_no_lights.json")
+  fi
+  if [[ "$lab" != lab[123]_* ]]; then  # from lab 4 on: shadows switched off and on, filtered, translucent
+    jq '.lights |= map(.cast_shadows = false)' "$base" >"$scenes/good_shadows_off.json"
+    jq '.lights |= map(.cast_shadows = true | .shadow = ((.shadow // {}) + {"resolution": 256, "pcf": 5, "filter": "bilinear"}))' \
+      "$base" >"$scenes/good_shadows_all_pcf5.json"
+    jq '.objects |= map(.cast_shadows = false)' "$base" >"$scenes/good_no_casters.json"
+    jq '.materials |= map_values(.opacity = 0.5)' "$base" >"$scenes/good_translucent.json"
+    goods+=("$scenes/good_shadows_off.json" "$base" "$scenes/good_shadows_all_pcf5.json" "$scenes/good_no_casters.json"
+            "$scenes/good_translucent.json")
   fi
   head -c "$(( $(wc -c <"$base") / 2 ))" "$base" >"$scenes/broken_truncated.json"
   jq '.camera.near = -1' "$base" >"$scenes/broken_near.json"
@@ -240,11 +251,16 @@ soak_lab() {
     else
       from="${brokens[$brokens_i]}"; brokens_i=$(( (brokens_i + 1) % ${#brokens[@]} ))
     fi
+    local good=$next_good
     next_good=$(( 1 - next_good ))
     out_lines=$(grep -c "^reloaded " "$work/stdout" || true)
     err_lines=$(grep -c "^reload failed" "$work/stderr" || true)
     cp "$from" "$scene.tmp" && mv "$scene.tmp" "$scene"
-    answered "scene $(basename "$from" .json)" reload_seen
+    answered "scene $(basename "$from" .json)" reload_seen || return 1
+    # A good scene must load and a broken one must be rejected (not just answered).
+    local loaded; loaded=$(( $(grep -c "^reloaded " "$work/stdout" || true) > out_lines ))
+    if ((good && !loaded)); then fail "good scene $(basename "$from") rejected: $(grep '^reload failed' "$work/stderr" | tail -1)"; return 1; fi
+    if ((!good && loaded)); then fail "broken scene $(basename "$from") was loaded"; return 1; fi
   }
   reload_key() {
     xdo windowactivate --sync "$wid" >/dev/null 2>&1 || true
@@ -327,10 +343,10 @@ soak_lab() {
              first, base, last, low, peak, 100 * (last - base) / base, n_all, k
     }' "$rss_log")" || { [[ -z "$failure" ]] && fail "memory: $figures"; }
   local growth; growth="$(sed -n 's/.*growth_pct=\([-0-9.]*\).*/\1/p' <<<"$figures")"
-  # SOAK_MEMORY_GATE=0 (the one-minute CTest runs only): report the growth, do not fail on it.
-  # The 1 % rule is about a run's minutes after the first; in one minute the growth is dominated by
-  # a leak of Debian's validation layer 1.3.239 (sync validation keeps ~55 KB per rebuilt renderer,
-  # docs/testing.md) and lands anywhere in 0.2-1.04 %. The 10-minute soak keeps the gate.
+  # SOAK_MEMORY_GATE=0: report the growth, do not fail on it (for looking at a run by hand; no test
+  # sets it). One-minute runs (CTest) are gated too: their 40-s window swings by up to ~0.75 % either
+  # way (an image or two allocated at a sample), so there the gate catches only leaks of more than
+  # about 1 % a minute; slower ones show in the 10-minute run (docs/testing.md, "The window soak").
   if [[ "${SOAK_MEMORY_GATE:-1}" == 0 ]]; then
     echo "soak: $lab: memory growth ${growth:-?} % reported, not gated (SOAK_MEMORY_GATE=0; bench/soak.sh 10 gates it)"
   elif [[ -z "$failure" && -n "$growth" ]] && awk -v g="$growth" 'BEGIN { exit !(g >= 1.0) }'; then
