@@ -123,6 +123,7 @@ int main(int argc, char** argv) {
         Lighting lighting = Lighting::from_scene(scene);
         const char* animate = std::getenv("LAB_ANIMATE_LIGHTS");
         lighting.animate_lights = animate && std::strcmp(animate, "1") == 0;
+        if (const char* view = std::getenv("LAB_SHADOW_VIEW")) lighting.shadow_view = std::atoi(view);  // headless pictures
         auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, LAB_SHADER_DIR);
         lab::SceneReloader reloader(app.options().scene, scene);
         const auto rebuild = [&](const lab::Scene& fresh) {

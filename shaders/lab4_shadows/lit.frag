@@ -69,6 +69,7 @@ vec3 mip_tint(vec2 uv) { return vec3(1.0); }
 
 void main() {
     vec3 color;
+    const float alpha = materials[object.material].albedo.a;  // lab 4: opacity (blended if < 1)
     if (SHADING == SHADING_GOURAUD) {
         color = in_gouraud_color;
         lab_bad = in_bad > 0.0;
@@ -95,5 +96,5 @@ void main() {
         check(color);
         if (lab_bad) color = vec3(1.0, 0.0, 1.0);
     }
-    out_color = vec4(color, materials[object.material].albedo.a);  // lab 4: α = opacity (blended if < 1)
+    out_color = vec4(color, alpha);
 }
