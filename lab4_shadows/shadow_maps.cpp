@@ -1,5 +1,6 @@
 #include "shadow_maps.h"
 
+#include "offscreen.h"
 #include "shader.h"
 
 #include <algorithm>
@@ -16,113 +17,6 @@ constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAG
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
 
-bool supports(const lab::VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features) {
-    VkFormatProperties p;
-    vkGetPhysicalDeviceFormatProperties(vk.physical_device(), format, &p);
-    return (p.optimalTilingFeatures & features) == features;
-}
-
-// A render pass into a light's map: `color` (VK_FORMAT_UNDEFINED: none) and depth, both
-// cleared, then read by the camera's pass. The dependencies order this pass after the shaders
-// of earlier frames that read the same images, and before the shaders that read them next.
-lab::Handle<VkRenderPass> make_pass(const lab::VulkanContext& vk, VkFormat color, VkFormat depth) {
-    std::vector<VkAttachmentDescription> attachments;
-    VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkAttachmentReference depth_ref{color ? 1u : 0u, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-    if (color)
-        attachments.push_back({0, color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
-                               VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-                               VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-    // Without colour the depth is the map and is kept; with colour it only finds the nearest
-    // translucent face and is dropped.
-    attachments.push_back({0, depth, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR,
-                           color ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE,
-                           VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
-                           color ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
-                                 : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL});
-    VkSubpassDescription subpass{};
-    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    subpass.colorAttachmentCount = color ? 1 : 0;
-    subpass.pColorAttachments = color ? &color_ref : nullptr;
-    subpass.pDepthStencilAttachment = &depth_ref;
-
-    const VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
-    const VkPipelineStageFlags tests = VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-    const VkAccessFlags depth_rw = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    const VkAccessFlags color_rw = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    VkSubpassDependency dependencies[2] = {};
-    dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;  // earlier reads (and this pass's earlier use) first
-    dependencies[0].dstSubpass = 0;
-    dependencies[0].srcStageMask = shaders | tests | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    dependencies[0].srcAccessMask = depth_rw | (color ? color_rw : 0);
-    dependencies[0].dstStageMask = tests | (color ? VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT : 0);
-    dependencies[0].dstAccessMask = depth_rw | (color ? color_rw : 0);
-    dependencies[1].srcSubpass = 0;  // then the map is read by the camera's pass
-    dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-    dependencies[1].srcStageMask = tests | (color ? VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT : 0);
-    dependencies[1].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | (color ? VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT : 0);
-    dependencies[1].dstStageMask = shaders;
-    dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-
-    VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    info.attachmentCount = uint32_t(attachments.size());
-    info.pAttachments = attachments.data();
-    info.subpassCount = 1;
-    info.pSubpasses = &subpass;
-    info.dependencyCount = 2;
-    info.pDependencies = dependencies;
-    VkRenderPass pass;
-    VK_CHECK(vkCreateRenderPass(vk.device(), &info, nullptr, &pass));
-    VkDevice device = vk.device();
-    return lab::Handle<VkRenderPass>(pass, [device](VkRenderPass p) { vkDestroyRenderPass(device, p, nullptr); });
-}
-
-lab::Handle<VkSampler> make_sampler(const lab::VulkanContext& vk, bool linear, bool compare) {
-    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = info.minFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    // Outside the map: depth 1 (nothing there), transmittance 1: lit.
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
-    info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
-    info.compareEnable = compare;
-    info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // 1 where reference ≤ stored depth: lit
-    VkSampler sampler;
-    VK_CHECK(vkCreateSampler(vk.device(), &info, nullptr, &sampler));
-    VkDevice device = vk.device();
-    return lab::Handle<VkSampler>(sampler, [device](VkSampler s) { vkDestroySampler(device, s, nullptr); });
-}
-
-lab::Handle<VkFramebuffer> make_framebuffer(const lab::VulkanContext& vk, VkRenderPass pass,
-                                            std::vector<VkImageView> views, uint32_t size) {
-    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    info.renderPass = pass;
-    info.attachmentCount = uint32_t(views.size());
-    info.pAttachments = views.data();
-    info.width = info.height = size;
-    info.layers = 1;
-    VkFramebuffer framebuffer;
-    VK_CHECK(vkCreateFramebuffer(vk.device(), &info, nullptr, &framebuffer));
-    VkDevice device = vk.device();
-    return lab::Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
-}
-
-void begin_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color) {
-    VkClearValue clears[2];
-    clears[0].color = {{1.0f, 1.0f, 0.0f, 0.0f}};  // transmittance 1, nearest translucent depth 1
-    clears[color ? 1 : 0].depthStencil = {1.0f, 0};
-    VkRenderPassBeginInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    info.renderPass = pass;
-    info.framebuffer = framebuffer;
-    info.renderArea = {{0, 0}, {size, size}};
-    info.clearValueCount = color ? 2 : 1;
-    info.pClearValues = clears;
-    vkCmdBeginRenderPass(cmd, &info, VK_SUBPASS_CONTENTS_INLINE);
-    const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, {size, size}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
-}
-
 bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
 }  // namespace
 
@@ -136,17 +30,17 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
         translucent_ = translucent_ || translucent_material(lighting, c.material);
     }
     // 32-bit float depth where the device samples it (precision for perspective maps), else 16-bit.
+    // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
     const VkFormatFeatureFlags depth_use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    depth_format_ = supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
-    linear_filter_ = supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
-    if (!linear_filter_) std::fprintf(stderr, "warning: the device cannot filter depth maps: bilinear shadows read as nearest\n");
+    depth_format_ = lab::format_supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
+    linear_filter_ = lab::format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
     const VkFormatFeatureFlags blend_use = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    transmittance_format_ = supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
+    transmittance_format_ = lab::format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
 
-    depth_pass_ = make_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
-    translucent_pass_ = make_pass(vk, transmittance_format_, depth_format_);
-    nearest_sampler_ = make_sampler(vk, false, false);
-    compare_sampler_ = make_sampler(vk, linear_filter_, true);
+    depth_pass_ = lab::make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
+    translucent_pass_ = lab::make_offscreen_pass(vk, transmittance_format_, depth_format_);
+    nearest_sampler_ = lab::make_depth_sampler(vk, false, false);
+    compare_sampler_ = lab::make_depth_sampler(vk, linear_filter_, true);
 
     // Opaque casters: depth only — position-only vertex input, no fragment shader, no colour.
     vertex_shader_ = lab::load_shader(vk, shader_dir, "shadow.vert");
@@ -199,9 +93,9 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     vk.run_once([&](VkCommandBuffer cmd) {
         for (Map* m : {&stand_in_2d_, &stand_in_cube_}) {
             for (size_t f = 0; f < m->framebuffers.size(); ++f) {
-                begin_pass(cmd, depth_pass_, m->framebuffers[f], 1, false);
+                lab::begin_offscreen_pass(cmd, depth_pass_, m->framebuffers[f], 1, false);
                 vkCmdEndRenderPass(cmd);
-                begin_pass(cmd, translucent_pass_, m->translucent_framebuffers[f], 1, true);
+                lab::begin_offscreen_pass(cmd, translucent_pass_, m->translucent_framebuffers[f], 1, true);
                 vkCmdEndRenderPass(cmd);
             }
         }
@@ -244,7 +138,7 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
             m.face_views.push_back(lab::create_layer_view(vk_, m.depth.image, depth_format_, VK_IMAGE_ASPECT_DEPTH_BIT, f));
             depth_view = m.face_views.back();
         }
-        m.framebuffers.push_back(make_framebuffer(vk_, depth_pass_, {depth_view}, resolution));
+        m.framebuffers.push_back(lab::make_square_framebuffer(vk_, depth_pass_, {depth_view}, resolution));
         if (!translucent) continue;
         VkImageView color_view = m.transmittance.view;
         if (cube) {
@@ -253,7 +147,7 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
             color_view = m.transmittance_views.back();
         }
         m.translucent_framebuffers.push_back(
-            make_framebuffer(vk_, translucent_pass_, {color_view, VkImageView(m.scratch_depth.view)}, resolution));
+            lab::make_square_framebuffer(vk_, translucent_pass_, {color_view, VkImageView(m.scratch_depth.view)}, resolution));
     }
     return m;
 }
@@ -394,7 +288,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     const uint32_t faces = map.cube ? 6 : 1;
     for (uint32_t face = 0; face < faces; ++face) {
         const glm::dmat4& view_projection = map.cube ? f.faces[face] : f.view_projection;
-        begin_pass(cmd, depth_pass_, map.framebuffers[face], map.resolution, false);
+        lab::begin_offscreen_pass(cmd, depth_pass_, map.framebuffers[face], map.resolution, false);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
         // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
         // (grows with how steeply the triangle's depth changes across a texel).
@@ -402,7 +296,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         draw_casters(cmd, view_projection, lighting, false, light);
         vkCmdEndRenderPass(cmd);
         if (!translucent_) continue;
-        begin_pass(cmd, translucent_pass_, map.translucent_framebuffers[face], map.resolution, true);
+        lab::begin_offscreen_pass(cmd, translucent_pass_, map.translucent_framebuffers[face], map.resolution, true);
         for (const auto* pipeline : {&nearest_[map.cube], &multiply_[map.cube]}) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
             draw_casters(cmd, view_projection, lighting, true, light);

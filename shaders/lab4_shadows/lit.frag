@@ -82,7 +82,8 @@ void main() {
         if (dot(face, to_eye) < 0.0) face = -face;
         // Flat: the face normal. Phong: the interpolated normal, renormalized (a zero
         // interpolated normal falls back to the face normal).
-        const vec3 N = SHADING == SHADING_FLAT ? face : safe_normalize(in_world_normal, face);
+        // Lab 4: a translucent object's back faces are drawn too; their normal turns to the viewer.
+        const vec3 N = SHADING == SHADING_FLAT ? face : (gl_FrontFacing ? 1.0 : -1.0) * safe_normalize(in_world_normal, face);
         const vec3 V = safe_normalize(to_eye, N);  // the eye on the surface: V = N
         color = shade(textured(materials[object.material], in_uv, P), P, N, V, in_world_tangent);
         if (MIP_VIEW && (ALBEDO_MAP || SPECULAR_MAP || EMISSIVE_MAP))

@@ -67,13 +67,21 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     const float ref = ndc.z;  // P's depth as the light sees it
     // Outside the map's coverage nothing was fitted to cast onto it: lit.
     if (!(ref >= 0.0 && ref <= 1.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))) return 1.0;
-    const vec2 texel = 1.0 / vec2(textureSize(depth_map, 0));
+    const vec2 size = vec2(textureSize(depth_map, 0));
     float sum = 0.0;
     for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
         for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
-            const vec2 t = uv + vec2(x, y) * texel;
+            const vec2 t = uv + vec2(x, y) / size;
             // The map already holds depth + bias (vkCmdSetDepthBias): lit when P is not farther.
-            const float lit = filter_mode == 1 ? texture(compare_map, vec3(t, ref)) : (ref <= texture(depth_map, t).r ? 1.0 : 0.0);
+            float lit = ref <= texture(depth_map, t).r ? 1.0 : 0.0;
+            if (filter_mode == 1) {
+                // Bilinear: the comparison sampler compares the four texels around t with ref at
+                // once (textureGather), the results are weighted like a linear filter's. (By hand:
+                // a comparison sampler's LINEAR filter needs a depth format the device filters.)
+                const vec4 c = textureGather(compare_map, t, ref);  // (i0,j1) (i1,j1) (i1,j0) (i0,j0)
+                const vec2 f = fract(t * size - 0.5);
+                lit = mix(mix(c.w, c.z, f.x), mix(c.x, c.y, f.x), f.y);
+            }
             sum += tap(lit, translucent, translucent ? texture(translucent_map, t).rg : vec2(1.0), ref);
         }
     }
