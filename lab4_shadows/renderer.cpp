@@ -264,8 +264,8 @@ const lab::PipelineBuilder::Result& Renderer::lit_pipeline(const Variant& varian
     return lit_pipelines_[{variant, pass}] = builder.build(vk_, render_pass_);
 }
 
-// Lab 4: the shadow-map view: the selected light's map in the bottom right corner (a cube map:
-// its six faces in a row, +X −X +Y −Y +Z −Z), near black, far white.
+// Lab 4: the shadow-map view: the selected light's map at the bottom, between the panels (a cube
+// map: its six faces, +X −X +Y above −Y +Z −Z), near black, far white.
 void Renderer::draw_shadow_view(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, VkExtent2D extent) {
     if (lighting.shadow_view < 0 || lighting.shadow_view >= int(lighting.lights.size())) return;
     const int map = lighting.shadow_slots()[size_t(lighting.shadow_view)];
@@ -273,15 +273,16 @@ void Renderer::draw_shadow_view(VkCommandBuffer cmd, uint32_t slot, const Lighti
     if (kind == 0) return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view_pipeline_.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view_pipeline_.layout, 0, 1, &sets_[slot], 0, nullptr);
-    const int faces = kind == 2 ? 6 : 1;
-    const float height = kind == 2 ? 0.5f : 0.9f;  // in NDC (2 = the whole window)
+    const int faces = kind == 2 ? 6 : 1, columns = kind == 2 ? 3 : 1;
+    const float height = kind == 2 ? 0.42f : 0.8f;  // one square, in NDC (2 = the whole window)
     const float width = height * float(extent.height) / float(std::max(extent.width, 1u));
     for (int face = 0; face < faces; ++face) {
-        const float x1 = 0.98f - float(faces - 1 - face) * (width + 0.01f);
+        const float x0 = (float(face % columns) - 0.5f * float(columns)) * (width + 0.01f);
+        const float y1 = 0.98f - float(faces / columns - 1 - face / columns) * (height + 0.01f);
         const struct {
             glm::vec4 rect;
             glm::ivec4 which;
-        } constants{{x1 - width, 0.98f - height, x1, 0.98f}, {map, kind == 2 ? face : -1, shadow_maps_->perspective(map), 0}};
+        } constants{{x0, y1 - height, x0 + width, y1}, {map, kind == 2 ? face : -1, shadow_maps_->perspective(map), 0}};
         vkCmdPushConstants(cmd, view_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof constants, &constants);
         vkCmdDraw(cmd, 6, 1, 0, 0);
