@@ -17,13 +17,15 @@
 # (LAB_STATUS_FILE, common/status_file.h) shows a frame drawn after the input — after a resize, at
 # the new size — and a scene write shows "reloaded" on stdout or "reload failed" on stderr. So the
 # soak also works for a lab that draws only when something happens: every input wakes it.
-# Resident memory (VmRSS) is sampled every SOAK_SAMPLE_S seconds (default 3).
+# Resident memory (VmRSS) is read at rest — after every input answered by a frame drawn, so the
+# renderer in use has drawn at least once — and, for the record, every SOAK_SAMPLE_S seconds
+# (default 3).
 #
 # Pass: no crash; every input answered; no validation message (the lab, closed with Alt+F4 at the
 # end, exits 0; it exits 1 after any message) and nothing unexpected on stderr; resident memory
 # after the warm-up — the first minute, or the first third of a shorter run — grows by less than
-# 1 % (SOAK_MEMORY_GATE; after the warm-up: the median of the last quarter of the samples, at least
-# five, against the median of the first quarter).
+# 1 % (SOAK_MEMORY_GATE; after the warm-up: the median of the last quarter of the samples at rest,
+# at least five, against the median of the first quarter).
 # Prints the figures per lab; exit 0 when every lab passed, 1 otherwise, 2 for bad usage.
 # SOAK_KEEP=1 keeps each lab's folder (logs, the RSS samples, the inputs with their times) even
 # when it passed. For finding where memory goes: SOAK_ACTIONS="scene reload" (only those inputs;
@@ -35,6 +37,7 @@ build="${LAB_BUILD_DIR:-$root/build}"
 minutes="${1:-10}"
 shift || true
 answer_s="${SOAK_ANSWER_S:-10}"
+start_s="${SOAK_START_S:-60}"
 sample_s="${SOAK_SAMPLE_S:-3}"
 seed="${SOAK_SEED:-1}"
 
@@ -141,7 +144,7 @@ soak_lab() {
   [[ -n "${SOAK_NO_VALIDATE:-}" ]] && validate=()  # diagnosis only: the lab's memory without the layer's
   LAB_STATUS_FILE="$status" "$exe" "${validate[@]}" --scene "$scene" >"$work/stdout" 2>"$work/stderr" &
   lab_pid=$!
-  local rss_log="$work/rss"
+  local rss_log="$work/rss" rss_rest="$work/rss_rest"
   ( while kill -0 "$lab_pid" 2>/dev/null; do
       rss=$(awk '/^VmRSS:/ { print $2 }' "/proc/$lab_pid/status" 2>/dev/null || true)
       [[ -n "$rss" ]] && echo "$(date +%s.%N) $rss $(awk '/^RssAnon:/ { print $2 }' "/proc/$lab_pid/status" 2>/dev/null)"
@@ -193,6 +196,18 @@ soak_lab() {
     return 1
   }
   mark() { read_status; before=$frame; }
+  # Resident memory at rest: right after an input that is answered by a frame drawn (a resize, a
+  # key, a drag...), so that the renderer in use has drawn at least once. Not after a reload: a new
+  # renderer's images take memory only when first written (lab 4's shadow maps, about 100 MB, at
+  # its first frame), and the sampler above also catches moments in the middle of a reload, when
+  # the old and the new renderer both exist. Its quarters' medians therefore move with how many of
+  # its samples fell just before or into a reload (lab 4: 320 or 420 MB).
+  rest_sample() {
+    local rss
+    rss=$(awk '/^VmRSS:/ { print $2 }' "/proc/$lab_pid/status" 2>/dev/null || true)
+    [[ -n "$rss" ]] && echo "$(now) $rss" >>"$rss_rest"
+    return 0
+  }
 
   # The window (it may take a while to appear: Vulkan start-up with validation).
   local wid=""
@@ -203,7 +218,12 @@ soak_lab() {
     sleep 0.1
   done
   [[ -n "$wid" ]] || { fail "no window appeared: $(tail -3 "$work/stderr")"; cleanup_lab; return 1; }
-  before=0; answered start frame_after || { cleanup_lab; return 1; }  # the first frame
+  # The first frame: start-up (shader compilation, uploads, lab 4's shadow pipelines), not an
+  # answer to an input, so it gets SOAK_START_S (default 60 s) on a loaded machine.
+  local answer_input_s="$answer_s"
+  answer_s="$start_s"
+  before=0; answered start frame_after || { answer_s="$answer_input_s"; cleanup_lab; return 1; }
+  answer_s="$answer_input_s"
 
   local want_w=0 want_h=0
   resize() {
@@ -305,6 +325,7 @@ soak_lab() {
     alive || { fail "the lab died: $(tail -3 "$work/stderr")"; break; }
     if grep -qi "validation" "$work/stderr"; then fail "validation message: $(grep -i -m1 validation "$work/stderr")"; break; fi
     steps=$((steps + 1))
+    case $action in resize|tiny|minimize|key|drag|wheel|mode) rest_sample ;; esac
   done
 
   # ---- close the window as a user does (Alt+F4 through the window manager); the lab must exit 0
@@ -329,8 +350,8 @@ soak_lab() {
   # ---- memory: after the warm-up, the median of the first quarter of the samples (at least five)
   # against the median of the last quarter. Medians, because resident memory swings by about an
   # image (a megabyte) between samples depending on what is allocated at that moment.
-  local figures
-  figures="$(awk -v t0="$started" -v warm="$warmup" '
+  memory_figures() {  # FILE: "time rss" lines
+    awk -v t0="$started" -v warm="$warmup" '
     function median(a, n,   i, j, t) { for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
                                       return a[int((n + 1) / 2)] }
     { t = $1 - t0; if (t < 0) next; n_all++; if ($2 > peak) peak = $2; if (n_all == 1) first = $2
@@ -342,7 +363,12 @@ soak_lab() {
       base = median(a, k); last = median(b, k)
       printf "rss_start_kib=%d rss_after_warmup_kib=%d rss_end_kib=%d rss_min_kib=%d rss_peak_kib=%d growth_pct=%.3f samples=%d window=%d",
              first, base, last, low, peak, 100 * (last - base) / base, n_all, k
-    }' "$rss_log")" || { [[ -z "$failure" ]] && fail "memory: $figures"; }
+    }' "$1"
+  }
+  # Gated: the samples at rest. Reported: the samples every SOAK_SAMPLE_S seconds.
+  local figures sampled
+  figures="$(memory_figures "$rss_rest")" || { [[ -z "$failure" ]] && fail "memory: $figures"; }
+  sampled="$(memory_figures "$rss_log")" || true
   local growth; growth="$(sed -n 's/.*growth_pct=\([-0-9.]*\).*/\1/p' <<<"$figures")"
   # The limit: SOAK_MEMORY_GATE percent (default 1, the issue's rule for the minutes after the first;
   # 0 = report only, for looking at a run by hand). The one-minute CTest runs use 2: their 40-s
@@ -366,7 +392,8 @@ soak_lab() {
             printf "%s%d", (k ? " " : ""), a[int((c + 1) / 2)] } }' "$rss_log")"
   local answers=""
   for k in "${!count[@]}"; do answers+="$k=${count[$k]}x/max${worst[$k]:-0}s, "; done
-  echo "soak: $lab: $(elapsed "$started") s, $steps inputs, warm-up ${warmup} s; $figures"
+  echo "soak: $lab: $(elapsed "$started") s, $steps inputs, warm-up ${warmup} s; at rest: $figures"
+  echo "soak: $lab: every ${sample_s} s (reported, not gated): $sampled"
   echo "soak: $lab: resident memory per minute (KiB, medians): $per_minute"
   echo "soak: $lab: answers (count, slowest): ${answers%, }"
   echo "soak: $lab: $(grep -c '^reloaded ' "$work/stdout" || true) reloads, $(grep -c '^reload failed' "$work/stderr" || true) rejected scenes; last $(cat "$status")"

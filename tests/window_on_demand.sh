@@ -44,11 +44,12 @@ wait_frames_above() {
   done
   return 1
 }
-# Waits (up to 20 s) until no frame was drawn for a whole second: the window has settled.
+# Waits (up to 60 s) until no frame was drawn for two whole seconds: the window has settled. Two,
+# not one: on a loaded machine one of lab 3's or lab 4's settle frames can take over a second.
 wait_idle() {
-  local before after tries=20
+  local before after tries=30
   while (( tries-- > 0 )); do
-    before=$(frames); sleep 1; after=$(frames)
+    before=$(frames); sleep 2; after=$(frames)
     (( after == before )) && return 0
   done
   fail "the window never stopped drawing ($(frames) frames so far)"
