@@ -27,6 +27,7 @@ bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;
     frame.extent = extent_;
+    begin_commands(frame.cmd);
     begin_render_pass(frame.cmd, render_pass_, framebuffer_, extent_, clear_linear);
     return true;
 }

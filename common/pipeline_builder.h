@@ -25,11 +25,15 @@ class PipelineBuilder {
 public:
     PipelineBuilder& shaders(VkShaderModule vertex, VkShaderModule fragment);
     PipelineBuilder& vertex_attributes(unsigned attribute_mask);
+    // A vertex layout other than lab::Vertex (binding 0), e.g. ImGui's ImDrawVert.
+    PipelineBuilder& vertex_layout(uint32_t stride, const std::vector<VkVertexInputAttributeDescription>& attributes);
     PipelineBuilder& descriptor_set(VkDescriptorSetLayout layout);
     PipelineBuilder& push_constants(VkShaderStageFlags stages, uint32_t size);
     PipelineBuilder& cull(VkCullModeFlags mode);
     PipelineBuilder& depth(bool test, bool write);
     PipelineBuilder& alpha_blend(bool enabled);
+    // Blending of premultiplied colour: out = src.rgb + dst.rgb * (1 - src.a).
+    PipelineBuilder& premultiplied_blend();
     PipelineBuilder& topology(VkPrimitiveTopology topology);
     // Specialization constants for both stages (the same constant_ids in the vertex and
     // fragment shader). `info` must stay valid until build().
@@ -45,12 +49,15 @@ private:
     VkShaderModule vertex_ = VK_NULL_HANDLE;
     VkShaderModule fragment_ = VK_NULL_HANDLE;
     unsigned attributes_ = kPosition;
+    uint32_t custom_stride_ = 0;  // != 0: custom_attributes_ instead of lab::Vertex
+    std::vector<VkVertexInputAttributeDescription> custom_attributes_;
     std::vector<VkDescriptorSetLayout> set_layouts_;
     std::vector<VkPushConstantRange> push_ranges_;
     VkCullModeFlags cull_ = VK_CULL_MODE_BACK_BIT;
     bool depth_test_ = true;
     bool depth_write_ = true;
     bool blend_ = false;
+    bool premultiplied_ = false;
     VkPrimitiveTopology topology_ = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     const VkSpecializationInfo* specialization_ = nullptr;
 };

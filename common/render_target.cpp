@@ -117,12 +117,14 @@ void FrameSlots::reset_fence(uint32_t slot) const {
 
 void FrameSlots::reset_commands(uint32_t slot) const { VK_CHECK(vkResetCommandPool(vk_.device(), pools_[slot], 0)); }
 
-void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
-                       const glm::vec3& clear_linear) {
+void begin_commands(VkCommandBuffer cmd) {
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+}
 
+void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
+                       const glm::vec3& clear_linear) {
     VkClearValue clears[2];
     clears[0].color = {{clear_linear.r, clear_linear.g, clear_linear.b, 1.0f}};  // the *_SRGB target encodes it
     clears[1].depthStencil = {1.0f, 0};

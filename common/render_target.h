@@ -60,7 +60,9 @@ private:
     std::array<Handle<VkFence>, RenderTarget::kFramesInFlight> fences_;
 };
 
-// Begins `cmd` (already reset) and the render pass, clears, sets viewport and scissor to `extent`.
+// Begins recording `cmd` (already reset) for one submission.
+void begin_commands(VkCommandBuffer cmd);
+// Begins the render pass on `cmd`, clears, sets viewport and scissor to `extent`.
 void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
                        const glm::vec3& clear_linear);
 
