@@ -33,7 +33,7 @@ double percentile(std::vector<double> values, double p) {
     const size_t rank = size_t(std::max(0.0, std::ceil(p / 100.0 * double(values.size())) - 1.0));
     return values[std::min(rank, values.size() - 1)];
 }
-// The device's largest image side for a colour attachment. The command line allows up to 32768;
+// The device's largest image side for a colour attachment. The command line allows up to 65536;
 // a larger image than the device can make is bad input like any other (one line, exit code 2).
 void check_image_size(const VulkanContext& vk, const Options& options) {
     const VkPhysicalDeviceLimits& limits = vk.properties().limits;

@@ -147,9 +147,9 @@ TEST(Cli, NonNumericValues) {
 }
 
 TEST(Cli, OutOfRangeValues) {
-    EXPECT_CONTAINS(error_of({"--width", "0"}), "--width: 0 is out of range (allowed: 1..32768)");
-    // Up to 32768 is the device's to refuse (tests/test_vulkan_correctness.cpp); beyond, the command line's.
-    EXPECT_CONTAINS(error_of({"--height", "32769"}), "--height: 32769 is out of range");
+    EXPECT_CONTAINS(error_of({"--width", "0"}), "--width: 0 is out of range (allowed: 1..65536)");
+    // Up to 65536 is the device's to refuse (tests/test_vulkan_correctness.cpp); beyond, the command line's.
+    EXPECT_CONTAINS(error_of({"--height", "65537"}), "--height: 65537 is out of range");
     EXPECT_CONTAINS(error_of({"--width", "-5"}), "--width: -5 is out of range");
     EXPECT_CONTAINS(error_of({"--width", "99999999999999999999999"}), "out of range");
     EXPECT_CONTAINS(error_of({"--frames", "0"}), "--frames: 0 is out of range");
