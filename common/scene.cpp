@@ -348,6 +348,24 @@ AmbientDesc read_ambient(const Context& ctx, const json& value) {
     return a;
 }
 
+// Lab 4: "shadow": { "resolution", "pcf", "filter", "bias", "slope_bias", "normal_offset" }.
+ShadowDesc read_shadow(const Context& ctx, const json& value, const std::string& path) {
+    ShadowDesc d;
+    Section s(ctx, value, path);
+    s.integer("resolution", d.resolution, 1, 16384);  // texels per side (per cube face)
+    s.integer("pcf", d.pcf, 1, 15);                     // an N×N kernel centred on the lookup
+    // An even kernel has no centre tap, so it would shift the shadow by half a texel.
+    if (d.pcf % 2 == 0)
+        fail(ctx, s.path_of("pcf"), "must be odd (an N×N kernel centred on the texel), got " + std::to_string(d.pcf));
+    if (const json* v = s.find("filter"))
+        d.filter = ShadowDesc::Filter(s.choice(*v, "filter", "shadow filter", {"nearest", "bilinear"}));
+    s.number("bias", d.bias, kNonNegative);
+    s.number("slope_bias", d.slope_bias, kNonNegative);
+    s.number("normal_offset", d.normal_offset, kNonNegative);
+    s.finish();
+    return d;
+}
+
 LightDesc read_light(const Context& ctx, const json& value, const std::string& path) {
     LightDesc l;
     Section s(ctx, value, path);
@@ -367,6 +385,8 @@ LightDesc read_light(const Context& ctx, const json& value, const std::string& p
         s.number("inner_deg", l.inner_deg, closed_range(0.0, 90.0));
         s.number("outer_deg", l.outer_deg, closed_range(0.0, 90.0));
     }
+    s.boolean("cast_shadows", l.cast_shadows);  // lab 4
+    if (const json* v = s.find("shadow")) l.shadow = read_shadow(ctx, *v, s.path_of("shadow"));
     s.finish(types[type] + " light");
     if (spot && l.inner_deg > l.outer_deg)
         fail(ctx, s.path_of("inner_deg"), "must be <= outer_deg (inner = " + number_text(l.inner_deg) +
@@ -451,6 +471,7 @@ MaterialDesc read_material(const Context& ctx, const json& value, const std::str
     if (const json* v = s.find("specular_map")) m.specular_map = read_map(ctx, *v, s.path_of("specular_map"));
     if (const json* v = s.find("emissive_map")) m.emissive_map = read_map(ctx, *v, s.path_of("emissive_map"));
     s.number("emissive_strength", m.emissive_strength, kNonNegative);
+    s.number("opacity", m.opacity, closed_range(0.0, 1.0));  // lab 4: < 1 is translucent
     if (const json* v = s.find("uv_scale")) m.uv_scale = read_vec2(ctx, *v, s.path_of("uv_scale"), kAnyNumber);
     if (const json* v = s.find("uv_offset")) m.uv_offset = read_vec2(ctx, *v, s.path_of("uv_offset"), kAnyNumber);
     if (const json* v = s.find("sampler")) m.sampler = read_sampler(ctx, *v, s.path_of("sampler"));
@@ -533,6 +554,7 @@ ObjectDesc read_object(const Context& ctx, const json& value, const std::string&
     read_tessellation(s, "rings", o.rings);
     s.number("crease_deg", o.crease_deg, closed_range(0.0, 180.0));
     s.boolean("normalize", o.normalize);
+    s.boolean("cast_shadows", o.cast_shadows);  // lab 4
     s.finish();
     return o;
 }

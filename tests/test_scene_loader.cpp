@@ -672,6 +672,97 @@ TEST(SceneLoader, BadLightingMaterialValuesAreRejected) {
     expect_error(material(R"("minnaert_k": 5)"), "materials.m.minnaert_k: ", "must be in [0, 4], got 5");
 }
 
+// --- lab 4: shadows and translucency ------------------------------------------------
+
+TEST(SceneLoader, ShadowDefaultsAreTheOnesOfSceneH) {
+    const lab::Scene s = parse(light(R"({"type": "directional"})"));
+    const lab::LightDesc& l = s.lights.at(0);
+    const lab::ShadowDesc defaults;
+    EXPECT_FALSE(l.cast_shadows);
+    EXPECT_EQ(l.shadow.resolution, defaults.resolution);
+    EXPECT_EQ(l.shadow.pcf, defaults.pcf);
+    EXPECT_EQ(l.shadow.filter, defaults.filter);
+    EXPECT_FLOAT_EQ(l.shadow.bias, defaults.bias);
+    EXPECT_FLOAT_EQ(l.shadow.slope_bias, defaults.slope_bias);
+    EXPECT_FLOAT_EQ(l.shadow.normal_offset, defaults.normal_offset);
+    EXPECT_FLOAT_EQ(s.materials.at("m").opacity, 1.0f);
+    EXPECT_TRUE(s.objects.at(0).cast_shadows);
+}
+
+TEST(SceneLoader, ShadowKeysParseForEveryLightType) {
+    const char* lights[] = {
+        R"({"type": "directional", "cast_shadows": true, "shadow": {"resolution": 512, "pcf": 5,
+            "filter": "nearest", "bias": 0.005, "slope_bias": 2.5, "normal_offset": 0.75}})",
+        R"({"type": "point", "cast_shadows": true, "shadow": {"resolution": 1, "pcf": 1, "filter": "bilinear",
+            "bias": 0, "slope_bias": 0, "normal_offset": 0}})",
+        R"({"type": "spot", "cast_shadows": false, "shadow": {"resolution": 16384, "pcf": 15}})"};
+    const lab::LightDesc d = parse(light(lights[0])).lights.at(0);
+    EXPECT_TRUE(d.cast_shadows);
+    EXPECT_EQ(d.shadow.resolution, 512);
+    EXPECT_EQ(d.shadow.pcf, 5);
+    EXPECT_EQ(d.shadow.filter, lab::ShadowDesc::Filter::Nearest);
+    EXPECT_FLOAT_EQ(d.shadow.bias, 0.005f);
+    EXPECT_FLOAT_EQ(d.shadow.slope_bias, 2.5f);
+    EXPECT_FLOAT_EQ(d.shadow.normal_offset, 0.75f);
+    const lab::LightDesc p = parse(light(lights[1])).lights.at(0);
+    EXPECT_TRUE(p.cast_shadows);
+    EXPECT_EQ(p.shadow.resolution, 1);
+    EXPECT_EQ(p.shadow.pcf, 1);
+    EXPECT_EQ(p.shadow.filter, lab::ShadowDesc::Filter::Bilinear);
+    EXPECT_FLOAT_EQ(p.shadow.bias, 0.0f);
+    EXPECT_FLOAT_EQ(p.shadow.slope_bias, 0.0f);
+    EXPECT_FLOAT_EQ(p.shadow.normal_offset, 0.0f);
+    const lab::LightDesc sp = parse(light(lights[2])).lights.at(0);
+    EXPECT_FALSE(sp.cast_shadows);
+    EXPECT_EQ(sp.shadow.resolution, 16384);
+    EXPECT_EQ(sp.shadow.pcf, 15);
+    EXPECT_FLOAT_EQ(sp.shadow.bias, lab::ShadowDesc{}.bias);  // untouched keys keep their defaults
+}
+
+TEST(SceneLoader, OpacityAndObjectCastShadowsParse) {
+    const lab::Scene s = parse(R"({"materials": {"glass": {"opacity": 0.25}, "wall": {"opacity": 0}, "solid": {"opacity": 1}},
+        "objects": [{"mesh": "cube", "material": "glass", "cast_shadows": false},
+                    {"mesh": "plane", "material": "wall", "cast_shadows": true}]})");
+    EXPECT_FLOAT_EQ(s.materials.at("glass").opacity, 0.25f);
+    EXPECT_FLOAT_EQ(s.materials.at("wall").opacity, 0.0f);
+    EXPECT_FLOAT_EQ(s.materials.at("solid").opacity, 1.0f);
+    EXPECT_FALSE(s.objects.at(0).cast_shadows);
+    EXPECT_TRUE(s.objects.at(1).cast_shadows);
+}
+
+TEST(SceneLoader, BadShadowValuesAreRejected) {
+    const auto shadow = [](const std::string& body) {
+        return light(R"({"type": "spot", "cast_shadows": true, "shadow": {)" + body + "}}");
+    };
+    expect_error(shadow(R"("resolution": 0)"), "lights[0].shadow.resolution: ", "must be in [1, 16384], got 0");
+    expect_error(shadow(R"("resolution": 16385)"), "lights[0].shadow.resolution: ", "must be in [1, 16384]");
+    expect_error(shadow(R"("resolution": 1024.5)"), "lights[0].shadow.resolution: ", "expected an integer");
+    expect_error(shadow(R"("pcf": 4)"), "lights[0].shadow.pcf: ", "must be odd");
+    expect_error(shadow(R"("pcf": 0)"), "lights[0].shadow.pcf: ", "must be in [1, 15], got 0");
+    expect_error(shadow(R"("pcf": 17)"), "lights[0].shadow.pcf: ", "must be in [1, 15], got 17");
+    expect_error(shadow(R"("pcf": "3")"), "lights[0].shadow.pcf: ", "expected a number, got string");
+    expect_error(shadow(R"("filter": "linear")"), "lights[0].shadow.filter: ", "unknown shadow filter 'linear'");
+    expect_error(shadow(R"("filter": "bilinaer")"), "lights[0].shadow.filter: ", "did you mean 'bilinear'?");
+    expect_error(shadow(R"("bias": -0.001)"), "lights[0].shadow.bias: ", "must be >= 0, got -0.001");
+    expect_error(shadow(R"("slope_bias": -1)"), "lights[0].shadow.slope_bias: ", "must be >= 0");
+    expect_error(shadow(R"("normal_offset": -1)"), "lights[0].shadow.normal_offset: ", "must be >= 0");
+    expect_error(shadow(R"("bias": 1e7)"), "lights[0].shadow.bias: ", "magnitude must be <= 1e6");
+    expect_error(shadow(R"("pfc": 3)"), "lights[0].shadow.pfc: ", "did you mean 'pcf'?");
+    expect_error(light(R"({"type": "point", "shadow": 2048})"), "lights[0].shadow: ", "expected an object");
+    expect_error(light(R"({"type": "point", "cast_shadows": 1})"), "lights[0].cast_shadows: ", "expected true or false");
+    expect_error(light(R"({"type": "point", "cast_shadow": true})"), "lights[0].cast_shadow: ",
+                 "did you mean 'cast_shadows'?");
+}
+
+TEST(SceneLoader, BadOpacityAndObjectCastShadowsAreRejected) {
+    const auto material = [](const std::string& body) { return R"({"objects": [], "materials": {"m": {)" + body + "}}}"; };
+    expect_error(material(R"("opacity": 1.5)"), "materials.m.opacity: ", "must be in [0, 1], got 1.5");
+    expect_error(material(R"("opacity": -0.5)"), "materials.m.opacity: ", "must be in [0, 1], got -0.5");
+    expect_error(material(R"("opacity": "half")"), "materials.m.opacity: ", "expected a number");
+    expect_error(material(R"("opacty": 0.5)"), "materials.m.opacty: ", "did you mean 'opacity'?");
+    expect_error(object_with(R"("cast_shadows": "no")"), "objects[0].cast_shadows: ", "expected true or false");
+}
+
 // --- model_matrix -------------------------------------------------------------
 
 namespace {
