@@ -92,6 +92,21 @@ Handle<VkRenderPass> make_overlay_pass(const VulkanContext& vk, VkFormat format)
     return Handle<VkRenderPass>(pass, [device](VkRenderPass p) { vkDestroyRenderPass(device, p, nullptr); });
 }
 
+// Blending of premultiplied colour: out = src.rgb + dst.rgb · (1 − src.a) (alpha likewise).
+VkPipelineColorBlendAttachmentState premultiplied_over() {
+    VkPipelineColorBlendAttachmentState state{};
+    state.blendEnable = VK_TRUE;
+    state.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    state.colorBlendOp = VK_BLEND_OP_ADD;
+    state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    state.alphaBlendOp = VK_BLEND_OP_ADD;
+    state.colorWriteMask =
+        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    return state;
+}
+
 template <typename T>
 void append_bytes(std::vector<uint8_t>& out, const T* data, size_t count) {
     const auto* bytes = reinterpret_cast<const uint8_t*>(data);
@@ -172,7 +187,7 @@ ImGuiRenderer::ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass)
                                                 .push_constants(VK_SHADER_STAGE_VERTEX_BIT, 4 * sizeof(float))
                                                 .cull(VK_CULL_MODE_NONE)
                                                 .depth(false, false)
-                                                .premultiplied_blend()
+                                                .color_blend(premultiplied_over())
                                                 .build(vk, target_pass);
         composite_layout_ = std::move(composite.layout);
         composite_pipeline_ = std::move(composite.pipeline);

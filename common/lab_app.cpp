@@ -222,17 +222,20 @@ bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
         phase_ms_[i] += std::chrono::duration<double, std::milli>(now - mark).count();
         mark = now;
     };
-    // The UI is built and, if it changed, drawn into its overlay before the frame's render pass;
-    // inside the pass the overlay is blended over the lab's picture (imgui_renderer.h).
-    auto& window_target = static_cast<WindowTarget&>(*target_);
+    // The UI is built and, if it changed, drawn into its overlay before the frame's render pass
+    // (after the lab's own commands outside the pass, such as lab 4's shadow maps); inside the
+    // pass the overlay is blended over the lab's picture (imgui_renderer.h).
+    const BeforePass before_pass = [&](const Frame& begun) {
+        phase(0);
+        if (cb.before_pass) cb.before_pass(begun);
+        phase(2);
+        ui_->new_frame(*window_, ui_dt);
+        cb.ui();
+        ui_->prepare(begun.cmd, begun.slot, begun.extent);
+        phase(1);
+    };
     Frame frame;
-    if (!window_target.acquire_frame(frame)) return false;
-    phase(0);
-    ui_->new_frame(*window_, ui_dt);
-    cb.ui();
-    ui_->prepare(frame.cmd, frame.slot, frame.extent);
-    phase(1);
-    window_target.begin_pass(cb.background(), frame);
+    if (!target_->begin_frame(cb.background(), frame, before_pass)) return false;
     cb.record(frame);
     phase(2);
     ui_->render(frame.cmd);
@@ -283,7 +286,7 @@ void LabApp::run_headless(const Callbacks& cb) {
     for (int i = 0; i < total; ++i) {
         cb.update(1.0f / 60.0f);  // headless time advances at a fixed rate: deterministic output
         Frame frame;
-        target_->begin_frame(cb.background(), frame);
+        target_->begin_frame(cb.background(), frame, cb.before_pass);
         cb.record(frame);
         target_->end_frame();
         frame_submitted();

@@ -74,13 +74,8 @@ public:
 
     VkRenderPass render_pass() const override { return render_pass_; }
     VkExtent2D extent() const override { return extent_; }
-    bool begin_frame(const glm::vec3& clear_linear, Frame& frame) override;
+    bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) override;
     void end_frame() override;
-    // begin_frame() in two steps, so that commands outside the render pass (the UI overlay) can
-    // be recorded before it: acquire_frame() waits for the frame slot, acquires an image and
-    // begins the command buffer (false: no frame now); begin_pass() begins the render pass.
-    bool acquire_frame(Frame& frame);
-    void begin_pass(const glm::vec3& clear_linear, const Frame& frame);
     uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
     // Blocks until the last frame drawn in frame slot `slot` (Frame::slot) has finished: window
     // benchmarks time frames the way headless ones do.
