@@ -8,12 +8,20 @@
 // reference does not model it).
 //
 // Acceptance on interior pixels (away from silhouettes, and for nearest filtering away from
-// texel borders, where float and double may round to different texels):
-//   * magnified (reference λ ≤ 0): every pixel within 2/255;
-//   * minified (λ > 0): at least 99 % of the pixels within 2/255. The rest differ because the
-//     GPU takes the LOD from differences across a 2×2 pixel quad (a finite difference one pixel
-//     wide, constant over the quad) and blends mip levels with 4-bit precision (lavapipe's
-//     mipmapPrecisionBits), while the reference uses the exact derivative at the pixel centre.
+// texel borders, where float and double may round to different texels), on any GPU:
+//   * the envelope: the reference is also shaded with every lookup done the ways the Vulkan
+//     specification allows an implementation to differ (ref::SamplingVariant: bilinear weights
+//     kept to the device's subTexelPrecisionBits, texel coordinates moved by the rasteriser's vertex
+//     snapping to subPixelPrecisionBits, λ anywhere in the bounds the specification puts
+//     on the approximated scale factor ρ); each pixel must lie within 2/255 of the interval those
+//     shadings span — every magnified pixel (reference λ ≤ 0), and at least 99 % of the minified
+//     ones (λ > 0: the GPU takes the LOD from differences across a 2×2 pixel quad, a finite
+//     difference one pixel wide, while the reference uses the exact derivative at the pixel centre).
+// and where the only device is lavapipe (CI's, which filters in float with exact weights), also
+// against the exact lookup:
+//   * magnified: every pixel within 2/255; minified: at least 99 % within 2/255 (the rest: the quad
+//     LOD above, and mip levels blended with lavapipe's 4-bit mipmapPrecisionBits).
+// An NVIDIA H100 keeps to the envelope but not to the exact lookup (docs/testing.md).
 // The filtering lesson compares each sampler setting with a 16×16 supersampled ground truth.
 #include "reference/cpu_reference.h"
 #include "reference/cpu_texture.h"
@@ -24,6 +32,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <vulkan/vulkan.h>
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +41,8 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace {
 
@@ -92,7 +103,85 @@ size_t magenta_pixels(const lab::Image8& image) {
 struct Verdict {
     size_t magnified = 0, magnified_bad = 0, minified = 0, minified_bad = 0;
     int magnified_max = 0;
+    size_t outside_envelope_magnified = 0, outside_envelope_minified = 0;
 };
+
+// What the test needs to know of the Vulkan devices the lab may run on, asked of the driver.
+struct DeviceFacts {
+    bool only_lavapipe = true;  // every device is Mesa's llvmpipe (exact float filtering)
+    int sub_texel_bits = 4;     // the fewest subTexelPrecisionBits of any device (4 = the spec's minimum)
+    int sub_pixel_bits = 4;     // the fewest subPixelPrecisionBits (vertex positions snap to 2^-bits pixel)
+};
+DeviceFacts device_facts() {
+    DeviceFacts facts;
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.apiVersion = VK_API_VERSION_1_1;
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pApplicationInfo = &app;
+    VkInstance instance = VK_NULL_HANDLE;
+    if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return facts;
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(instance, &count, devices.data());
+    int texel_bits = 64, pixel_bits = 64;
+    for (VkPhysicalDevice d : devices) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(d, &p);
+        facts.only_lavapipe = facts.only_lavapipe && std::string(p.deviceName).rfind("llvmpipe", 0) == 0;
+        texel_bits = std::min(texel_bits, int(p.limits.subTexelPrecisionBits));
+        pixel_bits = std::min(pixel_bits, int(p.limits.subPixelPrecisionBits));
+    }
+    vkDestroyInstance(instance, nullptr);
+    if (!devices.empty()) {
+        facts.sub_texel_bits = std::max(texel_bits, 4);
+        facts.sub_pixel_bits = std::max(pixel_bits, 4);
+    }
+    return facts;
+}
+const DeviceFacts& devices() {
+    static const DeviceFacts facts = device_facts();
+    return facts;
+}
+
+// Per pixel, the [lowest, highest] 8-bit sRGB value of each channel over the shadings with every
+// lookup done in one of the ways the specification allows (ref::SamplingVariant): the bilinear
+// weights' corners ±step, and λ at five points from its lowest to its highest bound (plus exact).
+// step = 2^-subTexelPrecisionBits (the weights' own rounding) + 2^-subPixelPrecisionBits (vertices
+// snapped to that fraction of a pixel move the interpolated coordinate by as much of a pixel's
+// footprint, which is at most one texel where the texture is magnified).
+struct Envelope {
+    std::vector<glm::ivec3> low, high;
+};
+Envelope sampling_envelope(const lab::Scene& scene, const ref::RefImage& reference) {
+    const double step = std::ldexp(1.0, -devices().sub_texel_bits) + std::ldexp(1.0, -devices().sub_pixel_bits);
+    std::vector<ref::ShadeFn> shaders;
+    for (const double t : {-1.0, 0.0, 0.25, 0.5, 0.75, 1.0})
+        for (const double su : {-step, step})
+            for (const double sv : {-step, step})
+                shaders.push_back(ref::make_texture_shader(scene, kWidth, kHeight, false, ref::SamplingVariant{{su, sv}, t}));
+    Envelope e;
+    e.low.assign(reference.hits.size(), glm::ivec3(255));
+    e.high.assign(reference.hits.size(), glm::ivec3(0));
+    const auto rows = [&](unsigned first, unsigned stride) {
+        for (size_t p = first; p < reference.hits.size(); p += stride) {
+            if (!reference.hits[p].hit) continue;
+            for (const ref::ShadeFn& shade : shaders) {
+                const glm::dvec3 c = shade(scene, reference.hits[p]);
+                for (int k = 0; k < 3; ++k) {
+                    const int v = int(std::lround(255.0 * ref::srgb_encode(std::clamp(c[k], 0.0, 1.0))));
+                    e.low[p][k] = std::min(e.low[p][k], v);
+                    e.high[p][k] = std::max(e.high[p][k], v);
+                }
+            }
+        }
+    };
+    const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 8u));
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(rows, t, threads);
+    for (std::thread& th : pool) th.join();
+    return e;
+}
 
 // Renders `scene_file` and checks it against the reference by the rules in the file comment.
 // `texel_edges`: nearest filtering, also mask pixels next to a texel border of the albedo map.
@@ -130,26 +219,42 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
         EXPECT_GT(magenta_pixels(actual), 1000u) << "no magenta/black checkerboard in " << png;
     else
         EXPECT_EQ(magenta_pixels(actual), 0u) << "NaN/Inf (or the missing-image checkerboard) in " << png;
+    const Envelope envelope = sampling_envelope(scene, reference);
     size_t covered = 0;
     for (size_t p = 0; p < mask.size(); ++p) {
         covered += reference.object_id[p] >= 0;
         if (mask[p] || !reference.hits[p].hit) continue;
         int diff = 0;
-        for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(actual.rgba[4 * p + c]) - int(expected.rgba[4 * p + c])));
+        bool outside = false;
+        for (int c = 0; c < 3; ++c) {
+            const int a = actual.rgba[4 * p + c];
+            diff = std::max(diff, std::abs(a - int(expected.rgba[4 * p + c])));
+            outside = outside || a < envelope.low[p][c] - 2 || a > envelope.high[p][c] + 2;
+        }
         if (lod(reference.hits[p]) <= 0.0) {
             ++v.magnified;
             v.magnified_bad += diff > 2;
             v.magnified_max = std::max(v.magnified_max, diff);
+            v.outside_envelope_magnified += outside;
         } else {
             ++v.minified;
             v.minified_bad += diff > 2;
+            v.outside_envelope_minified += outside;
         }
     }
     EXPECT_GT(covered, mask.size() / 10) << "test scene shows almost nothing";
-    EXPECT_EQ(v.magnified_bad, 0u) << name << ": magnified pixels beyond 2/255 (max " << v.magnified_max << ")";
-    EXPECT_LE(v.minified_bad, v.minified / 100) << name << ": minified pixels beyond 2/255";
-    std::printf("[ compare ] %s: magnified %zu px (max diff %d/255), minified %zu px (%.2f%% beyond 2/255)\n", name.c_str(),
-                v.magnified, v.magnified_max, v.minified, v.minified ? 100.0 * double(v.minified_bad) / double(v.minified) : 0.0);
+    EXPECT_EQ(v.outside_envelope_magnified, 0u) << name << ": magnified pixels outside what the specification allows";
+    EXPECT_LE(v.outside_envelope_minified, v.minified / 100) << name << ": minified pixels outside what the specification allows";
+    if (devices().only_lavapipe) {
+        EXPECT_EQ(v.magnified_bad, 0u) << name << ": magnified pixels beyond 2/255 (max " << v.magnified_max << ")";
+        EXPECT_LE(v.minified_bad, v.minified / 100) << name << ": minified pixels beyond 2/255";
+    }
+    std::printf("[ compare ] %s: magnified %zu px (max diff %d/255, %zu outside the envelope), minified %zu px "
+                "(%.2f%% beyond 2/255, %.2f%% outside the envelope)%s\n",
+                name.c_str(), v.magnified, v.magnified_max, v.outside_envelope_magnified, v.minified,
+                v.minified ? 100.0 * double(v.minified_bad) / double(v.minified) : 0.0,
+                v.minified ? 100.0 * double(v.outside_envelope_minified) / double(v.minified) : 0.0,
+                devices().only_lavapipe ? "" : " [not lavapipe: envelope only]");
     if (::testing::Test::HasFailure()) ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png", options);
     return v;
 }

@@ -104,7 +104,7 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
     if (width <= 0 || height <= 0) throw std::invalid_argument("render_shadowed: empty image");
     const SceneGeometry geometry(scene);
     std::shared_ptr<const ShadowCasters> casters = shadows ? std::make_shared<ShadowCasters>(scene) : nullptr;
-    const ShadeFn shade = make_texture_shader(scene, width, height, false, casters);
+    const ShadeFn shade = make_texture_shader(scene, width, height, false, {}, casters);
     const Camera camera = make_camera(scene.camera);
     std::vector<double> opacity;
     for (const lab::ObjectDesc& object : scene.objects) {

@@ -140,7 +140,7 @@ int wrap_texel(int i, int size, Wrap wrap) {
     return 0;
 }
 
-glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, Filter filter, Wrap wrap) {
+glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, Filter filter, Wrap wrap, glm::dvec2 weight_shift) {
     // Unnormalized texel coordinates; for huge |u| the repeat is taken first, in double, so
     // that the fraction keeps its precision (what a GPU does with float is documented in the lab).
     if (wrap == Wrap::Repeat) uv = glm::dvec2(fract(uv.x), fract(uv.y));
@@ -152,7 +152,7 @@ glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, Filter filter,
     }
     const double u0 = u - 0.5, v0 = v - 0.5;
     const int i0 = int(std::floor(u0)), j0 = int(std::floor(v0));
-    const double a = u0 - i0, b = v0 - j0;
+    const double a = std::clamp(u0 - i0 + weight_shift.x, 0.0, 1.0), b = std::clamp(v0 - j0 + weight_shift.y, 0.0, 1.0);
     const int ia = wrap_texel(i0, level.width, wrap), ib = wrap_texel(i0 + 1, level.width, wrap);
     const int ja = wrap_texel(j0, level.height, wrap), jb = wrap_texel(j0 + 1, level.height, wrap);
     return (1 - a) * (1 - b) * level.at(ia, ja) + a * (1 - b) * level.at(ib, ja) + (1 - a) * b * level.at(ia, jb) +
@@ -165,21 +165,34 @@ double lod(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy) {
     return rho > 0.0 ? std::log2(rho) : -1e9;
 }
 
+glm::dvec2 lod_bounds(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy) {
+    const glm::dvec2 size(level0.width, level0.height);
+    const glm::dvec2 mx = glm::abs(dx * size), my = glm::abs(dy * size);  // |∂u/∂x|, |∂v/∂x| in texels
+    const double low = std::max(std::max(mx.x, mx.y), std::max(my.x, my.y));
+    const double high = std::sqrt(3.0) * std::max(mx.x + mx.y, my.x + my.y);
+    return low > 0.0 ? glm::dvec2(std::log2(low), std::log2(high)) : glm::dvec2(-1e9);
+}
+
 glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::dvec2 uv, glm::dvec2 dx,
-                  glm::dvec2 dy) {
+                  glm::dvec2 dy, const SamplingVariant& variant) {
     const int q = int(texture.levels.size()) - 1;
-    const double lambda = desc.mipmaps == Mipmaps::None ? std::min(lod(texture.levels[0], dx, dy), 0.0)
-                                                        : std::min(lod(texture.levels[0], dx, dy), double(q));
-    if (lambda <= 0.0 || q == 0) return sample_level(texture.levels[0], uv, desc.filter, desc.wrap);
+    double exact = lod(texture.levels[0], dx, dy);
+    if (variant.lod_between >= 0.0) {
+        const glm::dvec2 range = lod_bounds(texture.levels[0], dx, dy);
+        exact = glm::mix(range.x, range.y, variant.lod_between);
+    }
+    const double lambda = desc.mipmaps == Mipmaps::None ? std::min(exact, 0.0) : std::min(exact, double(q));
+    const glm::dvec2 w = variant.weight_shift;
+    if (lambda <= 0.0 || q == 0) return sample_level(texture.levels[0], uv, desc.filter, desc.wrap, w);
     if (desc.mipmaps == Mipmaps::Nearest) {
         const int d = std::clamp(int(std::ceil(lambda + 0.5)) - 1, 0, q);
-        return sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap);
+        return sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap, w);
     }
     const int d = std::min(int(std::floor(lambda)), q);
     const double delta = lambda - d;
-    const glm::dvec4 hi = sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap);
+    const glm::dvec4 hi = sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap, w);
     if (d >= q || delta == 0.0) return hi;
-    return (1.0 - delta) * hi + delta * sample_level(texture.levels[size_t(d + 1)], uv, desc.filter, desc.wrap);
+    return (1.0 - delta) * hi + delta * sample_level(texture.levels[size_t(d + 1)], uv, desc.filter, desc.wrap, w);
 }
 
 namespace {
@@ -295,10 +308,10 @@ std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int wi
 }
 
 ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0,
-                            std::shared_ptr<const ShadowCasters> shadows) {
+                            const SamplingVariant& variant, std::shared_ptr<const ShadowCasters> shadows) {
     const std::shared_ptr<TexturedScene> data = textured_scene(scene, width, height, supersample_level0);
     const lab::LightingDesc::Shading shading_model = scene.lighting.shading;
-    return [data, shading_model, shadows](const lab::Scene& s, const Hit& hit) -> glm::dvec3 {
+    return [data, shading_model, variant, shadows](const lab::Scene& s, const Hit& hit) -> glm::dvec3 {
         if (!hit.hit) return glm::dvec3(s.background);
         const lab::MaterialDesc& m = s.materials.at(hit.material);
         const glm::dvec3 N = shading_model == lab::LightingDesc::Shading::Flat || glm::dot(hit.normal, hit.normal) == 0.0
@@ -326,7 +339,7 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
         lab::SamplerDesc sampler = m.sampler;
         if (data->level0) sampler.filter = Filter::Linear;  // derivatives 0: level 0, bilinear
         const auto lookup = [&](const std::string& map, glm::dvec2 at, glm::dvec2 ddx, glm::dvec2 ddy) {
-            return glm::dvec3(sample(*data->texture(map, m.sampler), sampler, at, ddx, ddy));
+            return glm::dvec3(sample(*data->texture(map, m.sampler), sampler, at, ddx, ddy, variant));
         };
         lab::MaterialDesc textured = m;
         if (!m.albedo_map.empty()) {

@@ -47,27 +47,44 @@ RefTexture load_texture(const std::string& map, bool mipmaps, int max_dimension 
 // The wrapped integer texel coordinate (spec: "Wrapping Operation").
 int wrap_texel(int i, int size, lab::SamplerDesc::Wrap wrap);
 
+// What a conformant implementation may do differently from the exact lookup, for tests that must
+// hold on any GPU (the Vulkan specification, chapter "Image Operations"):
+//   * the bilinear weights α, β keep only VkPhysicalDeviceLimits::subTexelPrecisionBits fraction
+//     bits, so each may be off by up to 2^-bits: `weight_shift` is added to (α, β), clamped to [0, 1];
+//   * the scale factor ρ may be approximated by any f with, per screen axis,
+//         max(|∂u/∂x|, |∂v/∂x|) ≤ f_x ≤ √3·(|∂u/∂x| + |∂v/∂x|)   (u, v in texels)
+//     `lod_between` = t picks λ = (1 − t)·λ_low + t·λ_high inside that range; a negative value (the
+//     default) keeps the exact λ = log2(ρmax).
+// The default variant is the exact lookup.
+struct SamplingVariant {
+    glm::dvec2 weight_shift{0.0};
+    double lod_between = -1.0;
+};
+
 // One filtered lookup at `level` (no mip selection): nearest or bilinear.
 glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, lab::SamplerDesc::Filter filter,
-                        lab::SamplerDesc::Wrap wrap);
+                        lab::SamplerDesc::Wrap wrap, glm::dvec2 weight_shift = glm::dvec2(0.0));
 
 // The LOD λ = log2(ρmax) of a lookup with UV derivatives dx, dy (per pixel) on `level0`.
 double lod(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy);
+// The smallest and largest λ the specification's bounds on ρ allow (see SamplingVariant).
+glm::dvec2 lod_bounds(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy);
 
 // A full lookup as a sampler with `desc` does it (anisotropy ignored).
 glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::dvec2 uv, glm::dvec2 dx,
-                  glm::dvec2 dy);
+                  glm::dvec2 dy, const SamplingVariant& variant = {});
 
 // A ShadeFn for lab 3 (Phong or flat shading): lab 2's equation with the textured terms
 //   a = albedo·A(uv'), s = specular·S(uv'), e = emissive + emissive_strength·E(uv'),
 //   uv' = uv·uv_scale + uv_offset, A distorted per docs/scene-format.md when "sampling" is
 // "distorted". The UV derivatives come from ray differentials of a width × height image.
 // With `supersample_level0` every lookup is bilinear on level 0 (for render_supersampled).
+// `variant`: every lookup of the shader done that way (tests/test_lab3_render.cpp's envelope).
 // Lab 4: with `shadows`, every light with cast_shadows is scaled by shadows->transmittance() at the
 // hit (cpu_shadow.h); the hit's geometric_normal must point to the shaded side.
 class ShadowCasters;
 ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0 = false,
-                            std::shared_ptr<const ShadowCasters> shadows = nullptr);
+                            const SamplingVariant& variant = {}, std::shared_ptr<const ShadowCasters> shadows = nullptr);
 
 // The LOD λ of the first map's lookup (albedo, else specular, else emissive) at a hit, from the
 // same ray differentials; −1e9 for misses and materials without maps. λ ≤ 0: magnified.
