@@ -7,7 +7,8 @@ For every configuration in the lab's knob table (KNOBS below) the script writes 
 file, runs the lab headless with --benchmark (LP_NUM_THREADS fixed; the same process
 writes its last frame to a PNG) and compares that PNG with the ideal reference
 (`lab_reference --ideal`: exact curved surfaces, per-pixel exact normals; lab 3: the
-supersampled texture, `lab_reference --supersample 16`) using `lab_compare`. Rounds are interleaved (all configurations, then all again, in another
+supersampled texture, `lab_reference --supersample 16`; lab 4: the ray-traced shadows with the shadow
+error metric, `lab_compare --shadow`) using `lab_compare`. Rounds are interleaved (all configurations, then all again, in another
 order) so that load on the shared machine hits every configuration alike.
 
 Two costs per configuration: the wall-clock frame time of --benchmark (median of the
@@ -239,25 +240,11 @@ LAB4_DEFAULT = {"resolution": 2048, "pcf": 3, "filter": "bilinear"}  # lab::Shad
 
 
 def lab4_stress_scene():
-    """Long, thin shadows at a grazing light: thin posts and a slatted fence on a floor, a
-    directional light 10 degrees above the horizon and a spot light low over the floor."""
-    posts = [{"mesh": "cube", "material": "post", "position": [x, 0.75, z], "scale": [0.05, 1.5, 0.05]}
-             for x, z in [(-2.0, -1.0), (-1.0, 0.5), (0.0, -0.5), (1.0, 1.0), (2.0, -1.5), (-0.5, 1.8)]]
-    slats = [{"mesh": "cube", "material": "post", "position": [-3.0, 0.1 + 0.18 * i, 0.0], "scale": [0.04, 0.05, 3.0]}
-             for i in range(6)]
-    return {
-        "camera": {"mode": "lookat", "position": [0.5, 3.2, 6.0], "target": [-1.0, 0.0, -1.5], "fov_y_deg": 60,
-                   "near": 0.05, "far": 100},
-        "background": [0.02, 0.03, 0.06],
-        "ambient": {"color": [1, 1, 1], "intensity": 0.08},
-        "lighting": {"model": "blinn_phong", "shading": "phong", "markers": False},
-        "lights": [
-            {"type": "directional", "direction": [-0.98, -0.17, -0.1], "intensity": 1.0, "cast_shadows": True},
-            {"type": "spot", "position": [3.5, 0.6, 3.0], "direction": [-1.0, -0.12, -1.0], "intensity": 2.0,
-             "attenuation": [1, 0.02, 0.01], "inner_deg": 30, "outer_deg": 40, "cast_shadows": True}],
-        "materials": {"floor": {"albedo": [0.8, 0.8, 0.8]}, "post": {"albedo": [0.7, 0.45, 0.3]}},
-        "objects": [{"mesh": "plane", "material": "floor", "scale": [16, 1, 16]}] + posts + slats,
-    }
+    """tests/scenes/lab4_grazing.json: long, thin shadows at a grazing light: thin posts and a
+    slatted fence on a floor, a directional light 10 degrees above the horizon and a spot light
+    low over the floor."""
+    with open(os.path.join(ROOT, "tests", "scenes", "lab4_grazing.json")) as f:
+        return json.load(f)
 
 
 def with_shadow(scene, settings):
@@ -810,6 +797,8 @@ def main():
     res = "320x180" if args.quick else "x".join(map(str, KNOBS[args.lab].get("size", (1280, 720))))
     note = (f"{res}, LP_NUM_THREADS={args.threads}, {args.rounds} interleaved rounds x {args.frames} frames on a "
             f"shared 2-core machine; bars: round-to-round spread")
+    if KNOBS[args.lab].get("time_env"):
+        note += "; time: a frame that re-renders every shadow map (LAB_ANIMATE_LIGHTS=1), error: the static picture"
     if args.replot:
         csv_path = os.path.join(out_dir, args.lab + ".csv")
         plot(args.lab, replot(args.lab, csv_path, None, args.quick), os.path.join(out_dir, args.lab + ".png"), note)
