@@ -75,16 +75,18 @@ Buffer Buffer::device_local(const VulkanContext& vk, const void* data, VkDeviceS
     return buffer;
 }
 
-Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                      VkImageAspectFlags aspect, uint32_t mip_levels) {
+namespace {
+Image create_image(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                   VkImageAspectFlags aspect, uint32_t mip_levels, bool cube) {
     VkDevice device = vk.device();
     Image result;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.flags = cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
     info.extent = {extent.width, extent.height, 1};
     info.mipLevels = mip_levels;
-    info.arrayLayers = 1;
+    info.arrayLayers = cube ? 6 : 1;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = usage;
@@ -100,13 +102,37 @@ Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat forma
 
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = image;
-    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.viewType = cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D;
     view.format = format;
-    view.subresourceRange = {aspect, 0, mip_levels, 0, 1};
+    view.subresourceRange = {aspect, 0, mip_levels, 0, info.arrayLayers};
     VkImageView image_view;
     VK_CHECK(vkCreateImageView(device, &view, nullptr, &image_view));
     result.view = Handle<VkImageView>(image_view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
     return result;
+}
+}  // namespace
+
+Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                      VkImageAspectFlags aspect, uint32_t mip_levels) {
+    return create_image(vk, extent, format, usage, aspect, mip_levels, false);
+}
+
+Image create_image_cube(const VulkanContext& vk, uint32_t size, VkFormat format, VkImageUsageFlags usage,
+                        VkImageAspectFlags aspect) {
+    return create_image(vk, {size, size}, format, usage, aspect, 1, true);
+}
+
+Handle<VkImageView> create_layer_view(const VulkanContext& vk, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                                      uint32_t layer) {
+    VkDevice device = vk.device();
+    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    view.image = image;
+    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.format = format;
+    view.subresourceRange = {aspect, 0, 1, layer, 1};
+    VkImageView image_view;
+    VK_CHECK(vkCreateImageView(device, &view, nullptr, &image_view));
+    return Handle<VkImageView>(image_view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
 }
 
 }  // namespace lab

@@ -55,5 +55,11 @@ struct Image {
 // `mip_levels` levels; the view covers all of them.
 Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                       VkImageAspectFlags aspect, uint32_t mip_levels = 1);
+// A cube map: six square layers of `size`² (+X, −X, +Y, −Y, +Z, −Z), the view a cube view.
+Image create_image_cube(const VulkanContext& vk, uint32_t size, VkFormat format, VkImageUsageFlags usage,
+                        VkImageAspectFlags aspect);
+// A 2D view of one layer of `image` (e.g. a cube face to render into).
+Handle<VkImageView> create_layer_view(const VulkanContext& vk, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                                      uint32_t layer);
 
 }  // namespace lab

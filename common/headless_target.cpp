@@ -19,7 +19,7 @@ HeadlessTarget::HeadlessTarget(const VulkanContext& vk, VkExtent2D extent)
 
 HeadlessTarget::~HeadlessTarget() { vkDeviceWaitIdle(vk_.device()); }
 
-bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
+bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass) {
     slots_.wait(slot_);
     slots_.reset_fence(slot_);
     slots_.reset_commands(slot_);
@@ -27,7 +27,7 @@ bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;
     frame.extent = extent_;
-    begin_render_pass(frame.cmd, render_pass_, framebuffer_, extent_, clear_linear);
+    begin_render_pass(frame, render_pass_, framebuffer_, clear_linear, before_pass);
     return true;
 }
 

@@ -15,7 +15,7 @@ public:
 
     VkRenderPass render_pass() const override { return render_pass_; }
     VkExtent2D extent() const override { return extent_; }
-    bool begin_frame(const glm::vec3& clear_linear, Frame& frame) override;
+    bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) override;
     void end_frame() override;
 
     // Blocks until frame number `frame_number` (counting begin_frame calls from 0) has finished.

@@ -216,7 +216,7 @@ bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
         mark = now;
     };
     Frame frame;
-    if (!target_->begin_frame(cb.background(), frame)) return false;
+    if (!target_->begin_frame(cb.background(), frame, cb.before_pass)) return false;
     phase(0);
     ui_->new_frame(*window_, ui_dt);
     cb.ui();
@@ -271,7 +271,7 @@ void LabApp::run_headless(const Callbacks& cb) {
     for (int i = 0; i < total; ++i) {
         cb.update(1.0f / 60.0f);  // headless time advances at a fixed rate: deterministic output
         Frame frame;
-        target_->begin_frame(cb.background(), frame);
+        target_->begin_frame(cb.background(), frame, cb.before_pass);
         cb.record(frame);
         target_->end_frame();
         frame_submitted();

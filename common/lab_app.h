@@ -47,6 +47,7 @@ public:
         std::function<void()> ui;                              // ImGui panels (window mode only)
         std::function<void(const Frame&)> record;              // draw commands inside the render pass
         std::function<glm::vec3()> background;                 // clear colour (linear RGB)
+        BeforePass before_pass;  // optional: commands before the render pass (lab 4's shadow maps)
     };
 
     LabApp(const LabInfo& info, const Options& options, int* validation_messages);

@@ -38,6 +38,19 @@ PipelineBuilder& PipelineBuilder::topology(VkPrimitiveTopology topology) {
     topology_ = topology;
     return *this;
 }
+PipelineBuilder& PipelineBuilder::dynamic_depth_bias() {
+    depth_bias_ = true;
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::color_attachments(uint32_t count) {
+    color_attachments_ = count;
+    return *this;
+}
+PipelineBuilder& PipelineBuilder::color_blend(const VkPipelineColorBlendAttachmentState& state) {
+    custom_blend_ = true;
+    blend_state_ = state;
+    return *this;
+}
 PipelineBuilder& PipelineBuilder::specialization(const VkSpecializationInfo* info) {
     specialization_ = info;
     return *this;
@@ -96,6 +109,7 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
     raster.cullMode = cull_;
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
+    raster.depthBiasEnable = depth_bias_;
 
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
@@ -117,17 +131,19 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
         blend_attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
         blend_attachment.alphaBlendOp = VK_BLEND_OP_ADD;
     }
+    if (custom_blend_) blend_attachment = blend_state_;
     VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend.attachmentCount = 1;
+    blend.attachmentCount = color_attachments_;
     blend.pAttachments = &blend_attachment;
 
-    const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                             VK_DYNAMIC_STATE_DEPTH_BIAS};
     VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamic.dynamicStateCount = 2;
+    dynamic.dynamicStateCount = depth_bias_ ? 3 : 2;
     dynamic.pDynamicStates = dynamic_states;
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    info.stageCount = 2;
+    info.stageCount = fragment_ ? 2 : 1;
     info.pStages = stages;
     info.pVertexInputState = &vertex_input;
     info.pInputAssemblyState = &assembly;
@@ -149,7 +165,7 @@ Handle<VkDescriptorSetLayout> make_descriptor_set_layout(const VulkanContext& vk
                                                          const std::vector<DescriptorBinding>& bindings) {
     std::vector<VkDescriptorSetLayoutBinding> vk_bindings;
     for (uint32_t i = 0; i < bindings.size(); ++i)
-        vk_bindings.push_back({i, bindings[i].type, 1, bindings[i].stages, nullptr});
+        vk_bindings.push_back({i, bindings[i].type, bindings[i].count, bindings[i].stages, nullptr});
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.bindingCount = static_cast<uint32_t>(vk_bindings.size());
     info.pBindings = vk_bindings.data();
@@ -162,7 +178,7 @@ Handle<VkDescriptorSetLayout> make_descriptor_set_layout(const VulkanContext& vk
 Handle<VkDescriptorPool> make_descriptor_pool(const VulkanContext& vk, const std::vector<DescriptorBinding>& bindings,
                                               uint32_t max_sets) {
     std::vector<VkDescriptorPoolSize> sizes;
-    for (const auto& b : bindings) sizes.push_back({b.type, max_sets});
+    for (const auto& b : bindings) sizes.push_back({b.type, max_sets * b.count});
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.maxSets = max_sets;
     info.poolSizeCount = static_cast<uint32_t>(sizes.size());

@@ -23,6 +23,7 @@ enum VertexAttribute : unsigned {
 
 class PipelineBuilder {
 public:
+    // `fragment` may be VK_NULL_HANDLE: a depth-only pipeline (lab 4's shadow pass).
     PipelineBuilder& shaders(VkShaderModule vertex, VkShaderModule fragment);
     PipelineBuilder& vertex_attributes(unsigned attribute_mask);
     PipelineBuilder& descriptor_set(VkDescriptorSetLayout layout);
@@ -31,6 +32,12 @@ public:
     PipelineBuilder& depth(bool test, bool write);
     PipelineBuilder& alpha_blend(bool enabled);
     PipelineBuilder& topology(VkPrimitiveTopology topology);
+    // Depth bias on, its constant and slope factors set per draw (vkCmdSetDepthBias).
+    PipelineBuilder& dynamic_depth_bias();
+    // How many colour attachments the subpass has (default 1; 0: depth only), and their blend
+    // state when neither the default (opaque) nor alpha_blend() fits.
+    PipelineBuilder& color_attachments(uint32_t count);
+    PipelineBuilder& color_blend(const VkPipelineColorBlendAttachmentState& state);
     // Specialization constants for both stages (the same constant_ids in the vertex and
     // fragment shader). `info` must stay valid until build().
     PipelineBuilder& specialization(const VkSpecializationInfo* info);
@@ -51,6 +58,10 @@ private:
     bool depth_test_ = true;
     bool depth_write_ = true;
     bool blend_ = false;
+    bool depth_bias_ = false;
+    uint32_t color_attachments_ = 1;
+    bool custom_blend_ = false;
+    VkPipelineColorBlendAttachmentState blend_state_{};
     VkPrimitiveTopology topology_ = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     const VkSpecializationInfo* specialization_ = nullptr;
 };
@@ -59,6 +70,7 @@ private:
 struct DescriptorBinding {
     VkDescriptorType type;
     VkShaderStageFlags stages;
+    uint32_t count = 1;  // an array of `count` descriptors
 };
 Handle<VkDescriptorSetLayout> make_descriptor_set_layout(const VulkanContext& vk,
                                                          const std::vector<DescriptorBinding>& bindings);

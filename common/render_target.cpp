@@ -117,11 +117,14 @@ void FrameSlots::reset_fence(uint32_t slot) const {
 
 void FrameSlots::reset_commands(uint32_t slot) const { VK_CHECK(vkResetCommandPool(vk_.device(), pools_[slot], 0)); }
 
-void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
-                       const glm::vec3& clear_linear) {
+void begin_render_pass(const Frame& frame, VkRenderPass pass, VkFramebuffer framebuffer, const glm::vec3& clear_linear,
+                       const BeforePass& before_pass) {
+    VkCommandBuffer cmd = frame.cmd;
+    const VkExtent2D extent = frame.extent;
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    if (before_pass) before_pass(frame);
 
     VkClearValue clears[2];
     clears[0].color = {{clear_linear.r, clear_linear.g, clear_linear.b, 1.0f}};  // the *_SRGB target encodes it

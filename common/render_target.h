@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <functional>
 
 namespace lab {
 
@@ -20,6 +21,10 @@ struct Frame {
     uint32_t slot = 0;  // frame-in-flight slot: index per-frame resources (uniform buffers) with it
     VkExtent2D extent{};
 };
+
+// Commands a lab records before the target's render pass begins (lab 4: the shadow passes render
+// into their own images first). Called with the frame's command buffer begun; may be empty.
+using BeforePass = std::function<void(const Frame&)>;
 
 class RenderTarget {
 public:
@@ -30,7 +35,8 @@ public:
     virtual VkExtent2D extent() const = 0;
     // Starts a frame cleared to `clear_linear` (linear RGB). Returns false when
     // no frame can be drawn right now (minimized window, swapchain recreated).
-    virtual bool begin_frame(const glm::vec3& clear_linear, Frame& frame) = 0;
+    // `before_pass` (if set) records its commands before the render pass begins.
+    virtual bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) = 0;
     virtual void end_frame() = 0;
 };
 
@@ -60,8 +66,9 @@ private:
     std::array<Handle<VkFence>, RenderTarget::kFramesInFlight> fences_;
 };
 
-// Begins `cmd` (already reset) and the render pass, clears, sets viewport and scissor to `extent`.
-void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkExtent2D extent,
-                       const glm::vec3& clear_linear);
+// Begins `frame.cmd` (already reset), records `before_pass`, then begins the render pass, clears,
+// sets viewport and scissor to `frame.extent`.
+void begin_render_pass(const Frame& frame, VkRenderPass pass, VkFramebuffer framebuffer, const glm::vec3& clear_linear,
+                       const BeforePass& before_pass);
 
 }  // namespace lab

@@ -302,7 +302,7 @@ namespace {
 }
 }  // namespace
 
-bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
+bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass) {
     if (window_.take_resized()) mark_stale(false);
     // A minimized window has a 0×0 framebuffer: draw nothing, wait for events.
     const int w = window_.input().framebuffer_width, h = window_.input().framebuffer_height;  // no round trip
@@ -329,7 +329,7 @@ bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame) {
     frame.cmd = slots_.command_buffer(slot_);
     frame.slot = slot_;
     frame.extent = extent_;
-    begin_render_pass(frame.cmd, render_pass_, framebuffers_[image_index_], extent_, clear_linear);
+    begin_render_pass(frame, render_pass_, framebuffers_[image_index_], clear_linear, before_pass);
     return true;
 }
 

@@ -74,7 +74,7 @@ public:
 
     VkRenderPass render_pass() const override { return render_pass_; }
     VkExtent2D extent() const override { return extent_; }
-    bool begin_frame(const glm::vec3& clear_linear, Frame& frame) override;
+    bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) override;
     void end_frame() override;
     uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
     // Blocks until the last frame drawn in frame slot `slot` (Frame::slot) has finished: window

@@ -1,0 +1,114 @@
+#include "offscreen.h"
+
+#include "vk_check.h"
+
+namespace lab {
+
+bool format_supports(const VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features) {
+    VkFormatProperties p;
+    vkGetPhysicalDeviceFormatProperties(vk.physical_device(), format, &p);
+    return (p.optimalTilingFeatures & features) == features;
+}
+
+// A render pass into a light's map: `color` (VK_FORMAT_UNDEFINED: none) and depth, both
+// cleared, then read by the camera's pass. The dependencies order this pass after the shaders
+// of earlier frames that read the same images, and before the shaders that read them next.
+Handle<VkRenderPass> make_offscreen_pass(const VulkanContext& vk, VkFormat color, VkFormat depth) {
+    std::vector<VkAttachmentDescription> attachments;
+    VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference depth_ref{color ? 1u : 0u, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    if (color)
+        attachments.push_back({0, color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
+                               VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE,
+                               VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+    // Without colour the depth is the map and is kept; with colour it only finds the nearest
+    // translucent face and is dropped.
+    attachments.push_back({0, depth, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                           color ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE,
+                           VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+                           color ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+                                 : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL});
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = color ? 1 : 0;
+    subpass.pColorAttachments = color ? &color_ref : nullptr;
+    subpass.pDepthStencilAttachment = &depth_ref;
+
+    const VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    const VkPipelineStageFlags tests = VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    const VkAccessFlags depth_rw = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    const VkAccessFlags color_rw = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    VkSubpassDependency dependencies[2] = {};
+    dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;  // earlier reads (and this pass's earlier use) first
+    dependencies[0].dstSubpass = 0;
+    dependencies[0].srcStageMask = shaders | tests | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[0].srcAccessMask = depth_rw | (color ? color_rw : 0);
+    dependencies[0].dstStageMask = tests | (color ? VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT : 0);
+    dependencies[0].dstAccessMask = depth_rw | (color ? color_rw : 0);
+    dependencies[1].srcSubpass = 0;  // then the map is read by the camera's pass
+    dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[1].srcStageMask = tests | (color ? VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT : 0);
+    dependencies[1].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | (color ? VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT : 0);
+    dependencies[1].dstStageMask = shaders;
+    dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+
+    VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    info.attachmentCount = uint32_t(attachments.size());
+    info.pAttachments = attachments.data();
+    info.subpassCount = 1;
+    info.pSubpasses = &subpass;
+    info.dependencyCount = 2;
+    info.pDependencies = dependencies;
+    VkRenderPass pass;
+    VK_CHECK(vkCreateRenderPass(vk.device(), &info, nullptr, &pass));
+    VkDevice device = vk.device();
+    return Handle<VkRenderPass>(pass, [device](VkRenderPass p) { vkDestroyRenderPass(device, p, nullptr); });
+}
+
+Handle<VkSampler> make_depth_sampler(const VulkanContext& vk, bool linear, bool compare) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = info.minFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    // Outside the map: depth 1 (nothing there), transmittance 1: lit.
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+    info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+    info.compareEnable = compare;
+    info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // 1 where reference ≤ stored depth: lit
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(vk.device(), &info, nullptr, &sampler));
+    VkDevice device = vk.device();
+    return Handle<VkSampler>(sampler, [device](VkSampler s) { vkDestroySampler(device, s, nullptr); });
+}
+
+Handle<VkFramebuffer> make_square_framebuffer(const VulkanContext& vk, VkRenderPass pass,
+                                              const std::vector<VkImageView>& views, uint32_t size) {
+    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    info.renderPass = pass;
+    info.attachmentCount = uint32_t(views.size());
+    info.pAttachments = views.data();
+    info.width = info.height = size;
+    info.layers = 1;
+    VkFramebuffer framebuffer;
+    VK_CHECK(vkCreateFramebuffer(vk.device(), &info, nullptr, &framebuffer));
+    VkDevice device = vk.device();
+    return Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+}
+
+void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color) {
+    VkClearValue clears[2];
+    clears[0].color = {{1.0f, 1.0f, 0.0f, 0.0f}};  // transmittance 1, nearest translucent depth 1
+    clears[color ? 1 : 0].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    info.renderPass = pass;
+    info.framebuffer = framebuffer;
+    info.renderArea = {{0, 0}, {size, size}};
+    info.clearValueCount = color ? 2 : 1;
+    info.pClearValues = clears;
+    vkCmdBeginRenderPass(cmd, &info, VK_SUBPASS_CONTENTS_INLINE);
+    const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {size, size}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+}  // namespace lab

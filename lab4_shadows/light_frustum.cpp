@@ -1,0 +1,149 @@
+#include "light_frustum.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Perspective maps: the near plane is never closer than this fraction of the far plane (depth
+// precision falls with far / near: at 1000 a 32-bit float map still resolves far·1e-3).
+constexpr double kMinNearRatio = 1e-3;
+
+glm::dvec3 unit_or_down(const glm::dvec3& v) {
+    const double len = glm::length(v);
+    return len > 1e-12 ? v / len : glm::dvec3(0.0, -1.0, 0.0);
+}
+
+// The box's eight corners through `m` (an affine view matrix); min / max of each coordinate.
+void extent(const glm::dmat4& m, const Box& box, glm::dvec3& lo, glm::dvec3& hi) {
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 corner(i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z);
+        const glm::dvec3 p(m * glm::dvec4(corner, 1.0));
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+}
+
+// Vulkan's framebuffer Y points down: flip, as the camera does, so that triangles keep their
+// winding (counter-clockwise = front) in the 2D maps.
+glm::dmat4 flip_y(glm::dmat4 p) {
+    p[1][1] *= -1.0;
+    return p;
+}
+
+// Near and far of a perspective map: far reaches the farthest receiver, near the nearest caster
+// (`distance` of a box: the smallest depth any of its points has in the map), but never below
+// far · kMinNearRatio (a caster closer than that, e.g. with the light inside it, is clipped).
+template <typename Near, typename Far>
+void fit_depth(const std::vector<Box>& casters, const std::vector<Box>& receivers, Near near_of, Far far_of,
+               double& n, double& f) {
+    f = 1e-3;
+    for (const Box& b : receivers) f = std::max(f, far_of(b));
+    for (const Box& b : casters) f = std::max(f, far_of(b));
+    n = kInf;
+    for (const Box& b : casters) n = std::min(n, near_of(b));
+    n = std::clamp(n * 0.99, f * kMinNearRatio, f * 0.5);
+    f *= 1.01;
+}
+}  // namespace
+
+glm::dvec3 up_for(const glm::dvec3& direction) {
+    return std::abs(unit_or_down(direction).y) > 0.999 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(0.0, 1.0, 0.0);
+}
+
+LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>& casters, const std::vector<Box>& receivers) {
+    const glm::dvec3 d = unit_or_down(direction);
+    Box all{glm::dvec3(kInf), glm::dvec3(-kInf)};
+    for (const Box& b : receivers) all = {glm::min(all.lo, b.lo), glm::max(all.hi, b.hi)};
+    if (receivers.empty()) all = {glm::dvec3(-1.0), glm::dvec3(1.0)};
+    const glm::dvec3 centre = 0.5 * (all.lo + all.hi);
+    const glm::dmat4 view = glm::lookAtRH(centre - d, centre, up_for(d));  // looks along −z = d
+
+    // Light space: x, y across the beam, z towards the light.
+    glm::dvec3 clo(kInf), chi(-kInf), rlo(kInf), rhi(-kInf);
+    for (const Box& b : casters) extent(view, b, clo, chi);
+    for (const Box& b : receivers) extent(view, b, rlo, rhi);
+    if (casters.empty()) clo = rlo, chi = rhi;
+    // Across the beam: only where a caster can shadow a receiver (both boxes overlap); a receiver
+    // outside is lit anyway (outside the map = lit). Along it: from the caster nearest the light
+    // to the farthest receiver.
+    glm::dvec3 lo(std::max(clo.x, rlo.x), std::max(clo.y, rlo.y), std::min(rlo.z, clo.z));
+    glm::dvec3 hi(std::min(chi.x, rhi.x), std::min(chi.y, rhi.y), chi.z);
+    const double size = std::max({glm::length(all.hi - all.lo), 1e-6});
+    for (int i = 0; i < 3; ++i) {
+        if (!(hi[i] > lo[i])) hi[i] = lo[i] = 0.5 * (lo[i] + hi[i]);  // empty: no caster over a receiver
+        lo[i] -= 1e-4 * size;
+        hi[i] += 1e-4 * size;
+    }
+    LightFrustum f;
+    f.near_plane = -hi.z;  // view space looks down −z
+    f.far_plane = -lo.z;
+    f.view_projection = flip_y(glm::orthoRH_ZO(lo.x, hi.x, lo.y, hi.y, f.near_plane, f.far_plane)) * view;
+    f.texel = std::max(hi.x - lo.x, hi.y - lo.y);
+    return f;
+}
+
+LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, double outer_deg,
+                      const std::vector<Box>& casters, const std::vector<Box>& receivers) {
+    const glm::dvec3 d = unit_or_down(direction);
+    const glm::dmat4 view = glm::lookAtRH(position, position + d, up_for(d));
+    // The cone plus a degree, so that PCF taps at its edge stay inside the map.
+    const double fov = glm::radians(std::clamp(2.0 * outer_deg + 1.0, 1.0, 170.0));
+    std::vector<Box> in_cone;
+    for (const Box& b : casters)
+        if (in_spot_cone(b, position, d, outer_deg)) in_cone.push_back(b);
+    const auto depth_range = [&](const Box& b) {  // the box's depth along the axis: −z in view space
+        glm::dvec3 lo(kInf), hi(-kInf);
+        extent(view, b, lo, hi);
+        return glm::dvec2(-hi.z, -lo.z);
+    };
+    LightFrustum f;
+    fit_depth(in_cone, receivers, [&](const Box& b) { return depth_range(b).x; },
+              [&](const Box& b) { return depth_range(b).y; }, f.near_plane, f.far_plane);
+    f.view_projection = flip_y(glm::perspectiveRH_ZO(fov, 1.0, f.near_plane, f.far_plane)) * view;
+    f.texel = 2.0 * std::tan(fov / 2.0);
+    return f;
+}
+
+LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters, const std::vector<Box>& receivers) {
+    // A point's depth in the face it falls in is its largest |coordinate| relative to the light,
+    // so a box's nearest depth is its Chebyshev distance from the light, its farthest depth at
+    // most its farthest corner.
+    const auto nearest = [&](const Box& b) {
+        const glm::dvec3 gap = glm::max(glm::max(b.lo - position, position - b.hi), glm::dvec3(0.0));
+        return std::max({gap.x, gap.y, gap.z});
+    };
+    const auto farthest = [&](const Box& b) {
+        const glm::dvec3 far = glm::max(glm::abs(b.lo - position), glm::abs(b.hi - position));
+        return std::max({far.x, far.y, far.z});
+    };
+    LightFrustum f;
+    fit_depth(casters, receivers, nearest, farthest, f.near_plane, f.far_plane);
+    // The cube faces in Vulkan's order, with the up vectors that make each face's image what a
+    // cube sampler reads for that direction (the OpenGL convention; both APIs put row 0 at t = 0).
+    // These views mirror the picture (a cube map is seen from inside): counter-clockwise
+    // triangles come out clockwise, so the translucent pass culls the other way (shadow_maps.cpp).
+    const glm::dvec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const glm::dvec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    const glm::dmat4 projection = glm::perspectiveRH_ZO(glm::radians(90.0), 1.0, f.near_plane, f.far_plane);
+    for (int i = 0; i < 6; ++i) f.faces[i] = projection * glm::lookAtRH(position, position + axes[i], ups[i]);
+    f.texel = 2.0;
+    return f;
+}
+
+bool in_spot_cone(const Box& box, const glm::dvec3& position, const glm::dvec3& direction, double outer_deg) {
+    const double angle = glm::radians(outer_deg + 1.0);
+    if (angle >= glm::radians(89.0)) return true;  // a (nearly) half-space cone: anything may be in it
+    const glm::dvec3 centre = 0.5 * (box.lo + box.hi);
+    const double radius = 0.5 * glm::length(box.hi - box.lo);
+    const glm::dvec3 v = centre - position;
+    if (glm::length(v) <= radius) return true;  // the light is inside the sphere
+    const glm::dvec3 d = unit_or_down(direction);
+    const double along = glm::dot(v, d);
+    const double across = glm::length(v - along * d);
+    // Signed distance from the sphere's centre to the cone's surface (positive outside).
+    return along >= -radius && across * std::cos(angle) - along * std::sin(angle) <= radius;
+}

@@ -1,0 +1,149 @@
+#include "lights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+double cos_deg(double deg) { return std::cos(deg * kPi / 180.0); }
+
+// Below this width the ramp of a spot cone is a hard edge (no division by ~0).
+constexpr double kMinConeWidth = 1e-6;
+
+glm::vec3 unit_or(const glm::vec3& v, const glm::vec3& fallback) {
+    const double len = glm::length(glm::dvec3(v));
+    return len > 1e-12 ? glm::vec3(glm::dvec3(v) / len) : fallback;
+}
+}  // namespace
+
+glm::vec2 spot_cone(const lab::LightDesc& light, lab::LightingDesc::SpotFalloff falloff) {
+    const double cos_outer = cos_deg(light.outer_deg);
+    const double cos_start = falloff == lab::LightingDesc::SpotFalloff::Edge ? 1.0 : cos_deg(light.inner_deg);
+    const double width = cos_start - cos_outer;
+    return {float(cos_outer), width >= kMinConeWidth ? float(1.0 / width) : 0.0f};
+}
+
+Lighting Lighting::from_scene(const lab::Scene& scene) {
+    Lighting l;
+    l.ambient = scene.ambient;
+    l.lights = scene.lights;
+    l.options = scene.lighting;
+    for (const auto& [name, material] : scene.materials) {
+        l.material_names.push_back(name);
+        l.materials.push_back(material);
+    }
+    if (l.materials.size() > size_t(kMaxMaterials))
+        throw std::runtime_error(scene.file + ": lab 2 supports at most " + std::to_string(kMaxMaterials) +
+                                 " materials, the scene has " + std::to_string(l.materials.size()));
+    // The GPU arrays have fixed sizes: extra lights of a type are dropped (with a note).
+    int kept[3] = {0, 0, 0};
+    const int limit[3] = {kMaxDirectional, kMaxPoint, kMaxSpot};
+    std::vector<lab::LightDesc> lights;
+    for (const lab::LightDesc& light : l.lights)
+        if (kept[int(light.type)]++ < limit[int(light.type)]) lights.push_back(light);
+    if (lights.size() < l.lights.size())
+        std::fprintf(stderr, "warning: at most %d directional, %d point and %d spot lights: %zu ignored\n",
+                     kMaxDirectional, kMaxPoint, kMaxSpot, l.lights.size() - lights.size());
+    l.lights = lights;
+    const long shadowed = std::count_if(l.lights.begin(), l.lights.end(), [](const lab::LightDesc& x) { return x.cast_shadows; });
+    if (shadowed > kMaxShadowLights)
+        std::fprintf(stderr, "warning: at most %d lights cast shadows: %ld cast none\n", kMaxShadowLights,
+                     shadowed - kMaxShadowLights);
+    return l;
+}
+
+int Lighting::material_index(const std::string& name) const {
+    return int(std::find(material_names.begin(), material_names.end(), name) - material_names.begin());
+}
+
+int Lighting::count(lab::LightDesc::Type type) const {
+    return int(std::count_if(lights.begin(), lights.end(), [type](const lab::LightDesc& l) { return l.type == type; }));
+}
+
+std::vector<int> Lighting::shadow_slots() const {
+    std::vector<int> slots;
+    int next = 0;
+    for (const lab::LightDesc& l : lights) slots.push_back(l.cast_shadows && next < kMaxShadowLights ? next++ : -1);
+    return slots;
+}
+
+glm::vec4 Lighting::ambient_radiance() const {
+    // color × intensity in double, rounded once.
+    return glm::vec4(glm::dvec3(ambient.color) * double(ambient.intensity), 0.0);
+}
+
+GpuLights Lighting::pack_lights() const {
+    GpuLights g{};
+    const glm::vec3 down(0.0f, -1.0f, 0.0f);
+    const std::vector<int> slots = shadow_slots();
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const lab::LightDesc& l = lights[i];
+        const glm::vec4 shadow(float(slots[i]), 0.0f, 0.0f, 0.0f);
+        const glm::vec4 radiance(glm::dvec3(l.color) * double(l.intensity), 0.0);
+        const glm::vec4 attenuation(l.attenuation, 0.0f);
+        switch (l.type) {
+            case lab::LightDesc::Type::Directional:
+                if (g.counts.x < kMaxDirectional)
+                    g.directional[g.counts.x++] = {glm::vec4(unit_or(l.direction, down), 0.0f), radiance, shadow};
+                break;
+            case lab::LightDesc::Type::Point:
+                if (g.counts.y < kMaxPoint)
+                    g.point[g.counts.y++] = {glm::vec4(l.position, 1.0f), radiance, attenuation, shadow};
+                break;
+            case lab::LightDesc::Type::Spot:
+                if (g.counts.z < kMaxSpot)
+                    g.spot[g.counts.z++] = {glm::vec4(l.position, 1.0f), glm::vec4(unit_or(l.direction, down), 0.0f),
+                                            radiance, attenuation,
+                                            glm::vec4(spot_cone(l, options.spot_falloff), 0.0f, 0.0f), shadow};
+                break;
+        }
+    }
+    return g;
+}
+
+void Lighting::pack_materials(GpuMaterial* out) const {
+    // Straight into the mapped buffer: nothing is allocated per frame. Unused entries keep
+    // whatever they held; no object indexes them.
+    const size_t n = std::min(materials.size(), size_t(kMaxMaterials));
+    for (size_t i = 0; i < n; ++i) {
+        const lab::MaterialDesc& m = materials[i];
+        // A float has ~7 digits: uv + 1e6 would keep no fraction at all. Whole repeats of the
+        // offset change nothing (period 1 for repeat, 2 for mirror), so they go here, in double.
+        const double period = m.sampler.wrap == lab::SamplerDesc::Wrap::Mirror ? 2.0 : 1.0;
+        const glm::dvec2 offset = m.sampler.wrap == lab::SamplerDesc::Wrap::Clamp
+                                      ? glm::dvec2(m.uv_offset)
+                                      : glm::mod(glm::dvec2(m.uv_offset), period);
+        const lab::DistortionDesc& d = m.distortion;
+        out[i] = {glm::vec4(m.albedo, m.opacity), glm::vec4(m.specular, m.shininess), glm::vec4(m.emissive, 0.0f),
+                  glm::vec4(m.f0, m.roughness), glm::vec4(m.roughness_x, m.roughness_y, m.minnaert_k, 0.0f),
+                  glm::vec4(m.uv_scale, glm::vec2(offset)),
+                  {glm::vec4(d.amplitude, d.frequency), glm::vec4(d.position_frequency, d.scales),
+                   glm::vec4(d.weights, m.emissive_strength, 0.0f)}};
+    }
+}
+
+Variant variant_of(const Lighting& l) {
+    Variant v = {int32_t(l.options.model),
+            int32_t(l.options.shading),
+            std::min(l.count(lab::LightDesc::Type::Directional), kMaxDirectional),
+            std::min(l.count(lab::LightDesc::Type::Point), kMaxPoint),
+            std::min(l.count(lab::LightDesc::Type::Spot), kMaxSpot),
+            int32_t(l.options.distribution),
+            int32_t(l.options.nan_check),
+            l.options.toon_bands,
+            0, 0, 0, 0,  // the material's maps: Renderer fills them in per draw
+            int32_t(l.mip_view)};
+    // Lab 4: per shadow slot, what its lookup needs (the translucent flag: Renderer).
+    const std::vector<int> slots = l.shadow_slots();
+    for (size_t i = 0; i < l.lights.size(); ++i) {
+        if (slots[i] < 0) continue;
+        const lab::ShadowDesc& s = l.lights[i].shadow;
+        int32_t* c = &v[kShadowConstants + 4 * slots[i]];
+        c[0] = l.lights[i].type == lab::LightDesc::Type::Point ? 2 : 1;
+        c[1] = s.pcf;
+        c[2] = int32_t(s.filter);
+    }
+    return v;
+}

@@ -1,0 +1,101 @@
+// lights.h — lab 2's lights and lighting models on the CPU side:
+//  * Lighting: what the scene file says and the UI edits (ambient, lights, models, materials);
+//  * the buffer layouts the shaders read (lights: storage, materials: uniform; must match
+//    shaders/lab2_lighting/lighting.glsl);
+//  * Variant: the specialization constants that pick a pipeline variant (model, shading, the
+//    number of lights of each type), so a scene pays only for the lights and the model it uses.
+// Lab 4: which lights cast shadows (a shadow slot each) and how their maps are read.
+// The panel that edits all this is in lighting_panel.h (lab 4's shadow settings: shadows_panel.h).
+// The equation itself is in docs/lighting.md and lighting.glsl.
+#pragma once
+
+#include "scene.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+constexpr int kMaxDirectional = 8;
+constexpr int kMaxPoint = 32;
+constexpr int kMaxSpot = 32;
+// Lab 4: shadow-casting lights, each with its own map and specialization constants (lighting.glsl).
+constexpr int kMaxShadowLights = 4;
+
+// --- GPU layouts (std430; every member a vec4 so C++ and GLSL agree without padding rules) ---
+struct GpuDirectional {
+    glm::vec4 direction;  // xyz: unit vector, the way the light travels
+    glm::vec4 radiance;   // rgb: color × intensity
+    glm::vec4 shadow;     // lab 4: x = shadow slot, −1: casts none
+};
+struct GpuPoint {
+    glm::vec4 position;
+    glm::vec4 radiance;
+    glm::vec4 attenuation;  // xyz: constant, linear, quadratic
+    glm::vec4 shadow;
+};
+struct GpuSpot {
+    glm::vec4 position;
+    glm::vec4 direction;  // xyz: unit vector
+    glm::vec4 radiance;
+    glm::vec4 attenuation;
+    glm::vec4 cone;  // x: cos(outer), y: 1 / (cos(start of the ramp) − cos(outer)), 0 = hard edge
+    glm::vec4 shadow;
+};
+struct GpuLights {
+    glm::uvec4 counts;  // x: directional, y: point, z: spot
+    GpuDirectional directional[kMaxDirectional];
+    GpuPoint point[kMaxPoint];
+    GpuSpot spot[kMaxSpot];
+};
+// The materials are a uniform buffer of kMaxMaterials entries (std140 = std430 here: all vec4).
+constexpr int kMaxMaterials = 128;
+struct GpuMaterial {
+    glm::vec4 albedo;    // rgb, a: opacity (lab 4)
+    glm::vec4 specular;  // rgb: specular color, a: shininess
+    glm::vec4 emissive;  // rgb
+    glm::vec4 f0;        // rgb: Cook-Torrance F0, a: roughness
+    glm::vec4 params;    // x: Ward roughness along the tangent, y: along the bitangent, z: Minnaert k
+    glm::vec4 uv_transform;   // xy: uv_scale, zw: uv_offset (reduced by whole repeats, see pack_materials)
+    glm::vec4 distortion[3];  // amplitude, frequency | position_frequency, scales | weights, emissive_strength
+};
+
+// The spot cone as the shader uses it: factor = clamp((cosθ − cone.x)·cone.y, 0, 1), or a hard
+// edge (cosθ ≥ cone.x) when cone.y = 0. Both falloffs have this form: "edge" is "smooth" with
+// the ramp starting on the axis (inner = 0°). Computed in double (see docs/lighting.md).
+glm::vec2 spot_cone(const lab::LightDesc& light, lab::LightingDesc::SpotFalloff falloff);
+
+// Everything the lighting panel can change.
+struct Lighting {
+    lab::AmbientDesc ambient;
+    std::vector<lab::LightDesc> lights;
+    lab::LightingDesc options;
+    std::vector<std::string> material_names;  // the scene's materials, in name order
+    std::vector<lab::MaterialDesc> materials;
+    bool mip_view = false;  // lab 3: tint textured pixels by the mip level they read
+    bool animate_lights = false;  // lab 4: lights circle the scene's Y axis (what a moving light costs)
+    int shadow_view = -1;         // lab 4: the light whose shadow map is shown (−1: none)
+
+    static Lighting from_scene(const lab::Scene& scene);
+    int material_index(const std::string& name) const;
+    int count(lab::LightDesc::Type type) const;
+    // Lab 4: each light's shadow slot: the first kMaxShadowLights lights with cast_shadows, −1 for the others.
+    std::vector<int> shadow_slots() const;
+
+    glm::vec4 ambient_radiance() const;  // rgb: ambient color × intensity, a: 0
+    GpuLights pack_lights() const;
+    // Writes the materials into `out` (kMaxMaterials entries; the mapped uniform buffer).
+    void pack_materials(GpuMaterial* out) const;
+};
+
+// The specialization constants (constant_id = index), see lighting.glsl:
+// 0 lighting model, 1 shading, 2 directional count, 3 point count, 4 spot count,
+// 5 distribution, 6 NaN check, 7 toon bands; lab 3, per material: 8 albedo map, 9 specular map,
+// 10 emissive map, 11 distorted sampling, 12 mip-level view (variant_of leaves 8..11 at 0);
+// lab 4, per shadow slot s: 13 + 4s map kind (0 none, 1 2D, 2 cube), 14 + 4s PCF kernel N,
+// 15 + 4s filter (0 nearest, 1 bilinear), 16 + 4s translucent casters (the renderer sets it).
+constexpr int kShadowConstants = 13;
+using Variant = std::array<int32_t, kShadowConstants + 4 * kMaxShadowLights>;
+Variant variant_of(const Lighting& lighting);

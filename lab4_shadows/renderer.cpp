@@ -1,0 +1,342 @@
+#include "renderer.h"
+
+#include "mesh.h"
+#include "shader.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+namespace {
+// Objects that share a mesh (and its tessellation) share one GPU copy.
+std::string mesh_key(const lab::ObjectDesc& object) {
+    return (object.mesh_path.empty() ? object.mesh : object.mesh_path) + "|" + std::to_string(object.segments) + "|" +
+           std::to_string(object.rings) + "|" + std::to_string(object.crease_deg) + "|" + std::to_string(object.normalize) + "|" +
+           std::to_string(object.obj_material);
+}
+
+// Normals transform with the inverse transpose of the model matrix's 3×3 part, so a
+// non-uniform scale keeps them perpendicular to the surface. Computed in double; scaled so
+// its largest element is ±1 (only the direction matters: the shader renormalizes), which
+// keeps float magnitudes near 1 even for scales of 1e-6 or 1e6.
+void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
+    // EXERCISE normal_matrix: the matrix that turns normals with the object: (M₃⁻¹)ᵀ, M₃ the model's 3×3 part (glm::inverse, glm::transpose). Checked by Lab2Render.DefaultScene, Lab2Render.EveryPrimitiveAndAModelLit.
+    // STUB: glm::dmat3 n(1.0);  // identity: the normals do not turn with the object
+    glm::dmat3 n = glm::transpose(glm::inverse(glm::dmat3(glm::dmat4(model))));
+    // END EXERCISE
+    double largest = 0.0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) largest = std::max(largest, std::abs(n[c][r]));
+    if (largest > 0.0) n /= largest;
+    for (int c = 0; c < 3; ++c) columns[c] = glm::vec4(glm::vec3(n[c]), 0.0f);
+}
+
+// Lab 4: a mesh's bounding box in model space, and that box moved to world space (its corners).
+Box mesh_bounds(const lab::Mesh& mesh) {
+    Box box{glm::dvec3(1e300), glm::dvec3(-1e300)};
+    for (const lab::Vertex& v : mesh.vertices) box = {glm::min(box.lo, glm::dvec3(v.position)), glm::max(box.hi, glm::dvec3(v.position))};
+    return mesh.vertices.empty() ? Box{} : box;
+}
+Box world_bounds(const Box& local, const glm::mat4& model) {
+    Box box{glm::dvec3(1e300), glm::dvec3(-1e300)};
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 p(i & 1 ? local.hi.x : local.lo.x, i & 2 ? local.hi.y : local.lo.y, i & 4 ? local.hi.z : local.lo.z);
+        const glm::dvec3 w(glm::dmat4(model) * glm::dvec4(p, 1.0));
+        box = {glm::min(box.lo, w), glm::max(box.hi, w)};
+    }
+    return box;
+}
+}  // namespace
+
+Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
+                   const Lighting& lighting, const std::string& shader_dir)
+    : vk_(vk), render_pass_(target.render_pass()), samplers_(vk) {
+    // Geometry: upload each distinct mesh once, remember what to draw.
+    lab::MeshLibrary library;  // reads each model file once
+    std::map<std::string, Box> bounds;  // lab 4: [mesh] its box in model space
+    std::vector<Caster> casters;        // lab 4: what the shadow maps draw
+    for (const lab::ObjectDesc& object : scene.objects) {
+        const std::string key = mesh_key(object);
+        auto it = meshes_.find(key);
+        if (it == meshes_.end()) {
+            const lab::Mesh mesh = library.mesh(object);
+            bounds[key] = mesh_bounds(mesh);
+            it = meshes_.emplace(key, lab::upload_mesh(vk, mesh)).first;
+        }
+        const lab::MaterialDesc& material = scene.materials.at(object.material);
+        items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
+        // Lit: the normal matrix and the material's index instead of its colour.
+        LitConstants& lit = items_.back().lit;
+        lit.model = items_.back().constants.model;
+        normal_matrix(lit.model, lit.normal_matrix);
+        lit.material = uint32_t(lighting.material_index(object.material));
+        const Box box = world_bounds(bounds[key], lit.model);
+        items_.back().centre = glm::vec3(0.5 * (box.lo + box.hi));
+        casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows});
+    }
+    shadow_maps_ = std::make_unique<ShadowMaps>(vk, std::move(casters), lighting, shader_dir);
+    // Light markers: a cube per point light, a cone per spot and directional light.
+    for (const auto& [key, mesh] : {std::pair<std::string, lab::Mesh>{"marker|cube", lab::make_cube()},
+                                    std::pair<std::string, lab::Mesh>{"marker|cone", lab::make_cone(16)}})
+        meshes_.emplace(key, lab::upload_mesh(vk, mesh));
+
+    // One uniform buffer + descriptor set per frame in flight, so the CPU can
+    // write frame N+1's camera while the GPU still reads frame N's. The same for
+    // the lights (a storage buffer) and the materials (a uniform buffer).
+    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    std::vector<lab::DescriptorBinding> bindings = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},   // the fragment shader needs the camera position
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, both},   // lights (Gouraud reads them in the vertex shader)
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both}};  // materials
+    for (const lab::DescriptorBinding& b : ShadowMaps::bindings()) bindings.push_back(b);  // lab 4: 3..9
+    set_layout_ = lab::make_descriptor_set_layout(vk, bindings);
+    pool_ = lab::make_descriptor_pool(vk, bindings, lab::RenderTarget::kFramesInFlight);
+    const VkDeviceSize material_bytes = kMaxMaterials * sizeof(GpuMaterial);
+    for (uint32_t slot = 0; slot < lab::RenderTarget::kFramesInFlight; ++slot) {
+        uniforms_.push_back(lab::Buffer::host_visible(vk, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
+        lights_.push_back(lab::Buffer::host_visible(vk, sizeof(GpuLights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+        materials_.push_back(lab::Buffer::host_visible(vk, material_bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
+        sets_.push_back(lab::allocate_descriptor_set(vk, pool_, set_layout_));
+        lab::write_buffer_descriptor(vk, sets_.back(), 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.back().get(),
+                                     sizeof(FrameUniforms));
+        lab::write_buffer_descriptor(vk, sets_.back(), 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.back().get(),
+                                     sizeof(GpuLights));
+        lab::write_buffer_descriptor(vk, sets_.back(), 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, materials_.back().get(),
+                                     material_bytes);
+        shadows_.push_back(lab::Buffer::host_visible(vk, sizeof(GpuShadows), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
+        shadow_maps_->write_descriptors(sets_.back(), shadows_.back().get());
+    }
+
+    vertex_shader_ = lab::load_shader(vk, shader_dir, "unlit.vert");
+    fragment_shader_ = lab::load_shader(vk, shader_dir, "unlit.frag");
+    pipeline_ = lab::PipelineBuilder()
+                    .shaders(vertex_shader_, fragment_shader_)
+                    .vertex_attributes(lab::kPosition)
+                    .descriptor_set(set_layout_)
+                    .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, sizeof(ObjectConstants))
+                    .build(vk, target.render_pass());
+    lit_vertex_shader_ = lab::load_shader(vk, shader_dir, "lit.vert");
+    lit_fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
+    textured_fragment_shader_ = lab::load_shader(vk, shader_dir, "textured.frag");
+    view_vertex_shader_ = lab::load_shader(vk, shader_dir, "map_view.vert");
+    view_fragment_shader_ = lab::load_shader(vk, shader_dir, "map_view.frag");
+    view_pipeline_ = lab::PipelineBuilder()
+                         .shaders(view_vertex_shader_, view_fragment_shader_)
+                         .vertex_attributes(0)
+                         .descriptor_set(set_layout_)
+                         .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 2 * sizeof(glm::vec4))
+                         .cull(VK_CULL_MODE_NONE)
+                         .depth(false, false)
+                         .build(vk, target.render_pass());
+    load_textures(lighting);
+    lit_pipeline(lit_variant(lighting));  // the scene's own variant, built up front
+}
+
+// Each map image is loaded and uploaded once, however many materials use it, with a mip chain
+// if any of them samples mipmaps. A bad file becomes the checkerboard and one warning line.
+void Renderer::load_textures(const Lighting& lighting) {
+    std::map<std::string, bool> mipmaps;  // [map]: does any material want its mip chain?
+    uint32_t textured = 0;
+    for (const lab::MaterialDesc& m : lighting.materials) {
+        textured += m.has_maps();
+        for (const std::string* map : {&m.albedo_map, &m.specular_map, &m.emissive_map})
+            if (!map->empty()) mipmaps[*map] = mipmaps[*map] || m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::None;
+    }
+    for (const auto& [map, mips] : mipmaps) {
+        const lab::TextureLoad load = lab::load_texture_image(map, int(vk_.properties().limits.maxImageDimension2D));
+        if (!load.warning.empty()) warnings_.push_back(load.warning);
+        if (!load.warning.empty()) std::fprintf(stderr, "warning: %s\n", load.warning.c_str());
+        textures_.emplace(map, lab::upload_texture(vk_, load.image, mips));
+    }
+    if (textured > 0) {
+        white_ = lab::upload_texture(vk_, lab::Image8{1, 1, {255, 255, 255, 255}}, false);
+        const std::vector<lab::DescriptorBinding> maps(3, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT});
+        texture_layout_ = lab::make_descriptor_set_layout(vk_, maps);
+        texture_pool_ = lab::make_descriptor_pool(vk_, maps, textured);
+    }
+    for (const lab::MaterialDesc& m : lighting.materials) {
+        material_sets_.push_back(VK_NULL_HANDLE);
+        material_maps_.push_back({!m.albedo_map.empty(), !m.specular_map.empty(), !m.emissive_map.empty(), m.distorted});
+        if (!m.has_maps()) continue;
+        material_sets_.back() = lab::allocate_descriptor_set(vk_, texture_pool_, texture_layout_);
+        const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
+        for (uint32_t binding = 0; binding < 3; ++binding)  // identical samplers are one VkSampler
+            lab::write_image_descriptor(vk_, material_sets_.back(), binding, samplers_.get(m.sampler),
+                                        (maps[binding]->empty() ? white_ : textures_.at(*maps[binding])).image.view);
+    }
+    warnings_.insert(warnings_.end(), samplers_.warnings().begin(), samplers_.warnings().end());
+    if (textured > 0)
+        std::printf("textures: %zu images, %zu samplers for %u materials with maps\n", textures_.size(),
+                    samplers_.size(), textured);
+}
+
+void Renderer::draw_shadow_maps(const lab::Frame& frame, const Lighting& lighting) {
+    if (shadow_maps_->maps() == 0) return;  // no light casts shadows: no pass at all
+    shadow_maps_->record(frame.cmd, lighting, static_cast<GpuShadows*>(shadows_[frame.slot].mapped()));
+}
+
+void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,
+                    const glm::vec3& camera_position, const Lighting& lighting) {
+    const FrameUniforms uniforms{view, projection, glm::vec4(camera_position, 1.0f), lighting.ambient_radiance()};
+    std::memcpy(uniforms_[frame.slot].mapped(), &uniforms, sizeof uniforms);
+    const GpuLights lights = lighting.pack_lights();
+    std::memcpy(lights_[frame.slot].mapped(), &lights, sizeof lights);
+    lighting.pack_materials(static_cast<GpuMaterial*>(materials_[frame.slot].mapped()));
+
+    VkCommandBuffer cmd = frame.cmd;
+    if (lighting.lights.empty()) {
+        draw_ambient_only(cmd, frame.slot, lighting);  // objects without maps
+    }
+    // Lab 4: opaque objects first; translucent ones (opacity < 1) over them, farthest first, each
+    // with its back faces before its front faces, so every surface blends over what is behind it.
+    opaque_.clear();
+    translucent_.clear();
+    for (const DrawItem& item : items_)
+        (lighting.materials[item.lit.material].opacity < 1.0f ? translucent_ : opaque_).push_back(&item);
+    draw_lit(cmd, frame.slot, lighting, lighting.lights.empty(), opaque_, Pass::Opaque);
+    std::sort(translucent_.begin(), translucent_.end(), [&](const DrawItem* a, const DrawItem* b) {
+        return glm::distance(a->centre, camera_position) > glm::distance(b->centre, camera_position);
+    });
+    for (const DrawItem* item : translucent_)
+        for (Pass pass : {Pass::BackFaces, Pass::FrontFaces}) draw_lit(cmd, frame.slot, lighting, false, {item}, pass);
+    if (lighting.options.markers) draw_markers(cmd, frame.slot, lighting);
+    draw_shadow_view(cmd, frame.slot, lighting, frame.extent);
+}
+
+// Lab 3: textured_only = draw only the objects with maps (the others went the ambient-only way).
+void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, bool textured_only,
+                        const std::vector<const DrawItem*>& items, Pass pass) {
+    Variant variant = lit_variant(lighting);
+    VkPipeline bound_pipeline = VK_NULL_HANDLE;
+    VkDescriptorSet bound_maps = VK_NULL_HANDLE;
+    const lab::GpuMesh* bound = nullptr;
+    for (const DrawItem* drawn : items) {
+        const DrawItem& item = *drawn;
+        const VkDescriptorSet maps = material_sets_[item.lit.material];
+        if (textured_only && !maps) continue;
+        // The material's maps pick the pipeline (specialization constants 8..11; the mip view only with maps).
+        std::copy(material_maps_[item.lit.material].begin(), material_maps_[item.lit.material].end(), variant.begin() + 8);
+        variant[12] = maps ? int32_t(lighting.mip_view) : 0;
+        const lab::PipelineBuilder::Result& pipeline = lit_pipeline(variant, pass);
+        if (pipeline.pipeline != bound_pipeline) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+            if (!bound_pipeline)  // set 0 stays bound across the lit layouts (they share set 0)
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 0, 1, &sets_[slot], 0, nullptr);
+            bound_pipeline = pipeline.pipeline;
+            bound_maps = VK_NULL_HANDLE;
+        }
+        if (maps && maps != bound_maps) {
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 1, 1, &maps, 0, nullptr);
+            bound_maps = maps;
+        }
+        if (item.mesh != bound) {  // objects sharing a mesh skip the rebind
+            lab::bind_mesh(cmd, *item.mesh);
+            bound = item.mesh;
+        }
+        vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(LitConstants), &item.lit);
+        vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
+    }
+}
+
+// Lab 4: variant_of() and whether the shadow maps carry transmittance (translucent casters).
+Variant Renderer::lit_variant(const Lighting& lighting) const {
+    Variant variant = variant_of(lighting);
+    for (int s = 0; s < kMaxShadowLights; ++s)
+        variant[kShadowConstants + 4 * s + 3] = variant[kShadowConstants + 4 * s] != 0 && shadow_maps_->translucent();
+    return variant;
+}
+
+// The lighting model, the shading and the number of lights of each type are specialization
+// constants: each combination is its own pipeline, built when first needed.
+const lab::PipelineBuilder::Result& Renderer::lit_pipeline(const Variant& variant, Pass pass) {
+    auto it = lit_pipelines_.find({variant, pass});
+    if (it != lit_pipelines_.end()) return it->second;
+    // Constant i of the shaders (constant_id = i) is variant[i]; booleans are 32-bit too.
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < variant.size(); ++i)
+        entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(variant), variant.data()};
+    const bool maps = variant[8] || variant[9] || variant[10];
+    lab::PipelineBuilder builder;
+    builder.shaders(lit_vertex_shader_, maps ? textured_fragment_shader_ : lit_fragment_shader_)
+        .vertex_attributes(lab::kPosition | lab::kNormal | lab::kUv | lab::kTangent)
+        .descriptor_set(set_layout_)
+        .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, sizeof(LitConstants))
+        .specialization(&specialization);
+    if (maps) builder.descriptor_set(texture_layout_);  // set 1: the maps
+    if (pass != Pass::Opaque)  // lab 4: blended over what is behind (α, 1 − α); depth tested, not written
+        builder.cull(pass == Pass::BackFaces ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT).alpha_blend(true).depth(true, false);
+    return lit_pipelines_[{variant, pass}] = builder.build(vk_, render_pass_);
+}
+
+// Lab 4: the shadow-map view: the selected light's map at the bottom, between the panels (a cube
+// map: its six faces, +X −X +Y above −Y +Z −Z), near black, far white.
+void Renderer::draw_shadow_view(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, VkExtent2D extent) {
+    if (lighting.shadow_view < 0 || lighting.shadow_view >= int(lighting.lights.size())) return;
+    const int map = lighting.shadow_slots()[size_t(lighting.shadow_view)];
+    const int kind = shadow_maps_->kind(map);
+    if (kind == 0) return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view_pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view_pipeline_.layout, 0, 1, &sets_[slot], 0, nullptr);
+    const int faces = kind == 2 ? 6 : 1, columns = kind == 2 ? 3 : 1;
+    const float height = kind == 2 ? 0.42f : 0.8f;  // one square, in NDC (2 = the whole window)
+    const float width = height * float(extent.height) / float(std::max(extent.width, 1u));
+    for (int face = 0; face < faces; ++face) {
+        const float x0 = (float(face % columns) - 0.5f * float(columns)) * (width + 0.01f);
+        const float y1 = 0.98f - float(faces / columns - 1 - face / columns) * (height + 0.01f);
+        const struct {
+            glm::vec4 rect;
+            glm::ivec4 which;
+        } constants{{x0, y1 - height, x0 + width, y1}, {map, kind == 2 ? face : -1, shadow_maps_->perspective(map), 0}};
+        vkCmdPushConstants(cmd, view_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof constants, &constants);
+        vkCmdDraw(cmd, 6, 1, 0, 0);
+    }
+}
+
+// Light markers, drawn unlit in the light's colour: a cube at a point light, a cone along a
+// spot light's axis and along a directional light's direction.
+void Renderer::draw_markers(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &sets_[slot], 0, nullptr);
+    for (const lab::LightDesc& light : lighting.lights) {
+        const bool point = light.type == lab::LightDesc::Type::Point;
+        const lab::GpuMesh& mesh = meshes_.at(point ? "marker|cube" : "marker|cone");
+        // The cone's apex (+Y) points the way the light travels; a directional light's
+        // arrow floats 3 units up-light of the origin.
+        const glm::vec3 d = glm::length(light.direction) > 0.0f ? glm::normalize(light.direction) : glm::vec3(0, -1, 0);
+        const glm::vec3 side = glm::normalize(glm::cross(std::abs(d.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0), d));
+        const glm::vec3 position = light.type == lab::LightDesc::Type::Directional ? -3.0f * d : light.position;
+        glm::mat4 model(glm::vec4(side, 0.0f), glm::vec4(d, 0.0f), glm::vec4(glm::cross(side, d), 0.0f),
+                        glm::vec4(position, 1.0f));
+        model = model * glm::mat4(glm::mat3(point ? 0.12f : 0.2f));
+        const float brightest = std::max({light.color.r, light.color.g, light.color.b, 1e-6f});
+        const ObjectConstants constants{model, glm::vec4(light.color / brightest, 1.0f)};
+        lab::bind_mesh(cmd, mesh);
+        vkCmdPushConstants(cmd, pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(ObjectConstants), &constants);
+        vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);
+    }
+}
+
+// Speed: with no lights the equation is e + ambient·a, one constant colour per object, so lab
+// 1's unlit pipeline draws it at lab 1's cost (no normals to interpolate, nothing per pixel).
+void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &sets_[slot], 0, nullptr);
+    const glm::vec3 ambient = glm::vec3(lighting.ambient_radiance());
+    const lab::GpuMesh* bound = nullptr;
+    for (const DrawItem& item : items_) {
+        if (material_sets_[item.lit.material]) continue;  // lab 3: textured objects are drawn lit
+        if (item.mesh != bound) {
+            lab::bind_mesh(cmd, *item.mesh);
+            bound = item.mesh;
+        }
+        const lab::MaterialDesc& m = lighting.materials[item.lit.material];
+        const ObjectConstants constants{item.constants.model, glm::vec4(m.emissive + ambient * m.albedo, 1.0f)};
+        vkCmdPushConstants(cmd, pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(ObjectConstants), &constants);
+        vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
+    }
+}

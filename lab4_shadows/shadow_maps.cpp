@@ -1,0 +1,306 @@
+#include "shadow_maps.h"
+
+#include "offscreen.h"
+#include "shader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace {
+// Pushed with each caster (shadow.vert, translucent_shadow.frag).
+struct ShadowConstants {
+    glm::mat4 light_mvp;
+    glm::vec4 transmittance;  // x: 1 − opacity
+};
+constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+// No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
+constexpr double kMaxTexels = 268435456.0;
+
+bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
+}  // namespace
+
+ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects, const Lighting& lighting,
+                       const std::string& shader_dir)
+    : vk_(vk), objects_(std::move(objects)) {
+    for (const Caster& c : objects_) {
+        receiver_boxes_.push_back(c.box);
+        if (!c.casts) continue;
+        caster_boxes_.push_back(c.box);
+        translucent_ = translucent_ || translucent_material(lighting, c.material);
+    }
+    // 32-bit float depth where the device samples it (precision for perspective maps), else 16-bit.
+    // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
+    const VkFormatFeatureFlags depth_use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    depth_format_ = lab::format_supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
+    linear_filter_ = lab::format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
+    const VkFormatFeatureFlags blend_use = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    transmittance_format_ = lab::format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
+
+    depth_pass_ = lab::make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
+    translucent_pass_ = lab::make_offscreen_pass(vk, transmittance_format_, depth_format_);
+    nearest_sampler_ = lab::make_depth_sampler(vk, false, false);
+    compare_sampler_ = lab::make_depth_sampler(vk, linear_filter_, true);
+
+    // Opaque casters: depth only — position-only vertex input, no fragment shader, no colour.
+    vertex_shader_ = lab::load_shader(vk, shader_dir, "shadow.vert");
+    opaque_ = lab::PipelineBuilder()
+                  .shaders(vertex_shader_, VK_NULL_HANDLE)
+                  .vertex_attributes(lab::kPosition)
+                  .push_constants(kBoth, sizeof(ShadowConstants))
+                  .cull(VK_CULL_MODE_NONE)  // a plane casts from either side
+                  .color_attachments(0)
+                  .dynamic_depth_bias()
+                  .build(vk, depth_pass_);
+    if (translucent_) {
+        translucent_shader_ = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
+        for (int cube = 0; cube < 2; ++cube) {
+            // Front faces as the light sees them; a cube face's view mirrors the winding.
+            const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
+            VkPipelineColorBlendAttachmentState g{};  // the nearest face's depth into g
+            g.colorWriteMask = VK_COLOR_COMPONENT_G_BIT;
+            VkPipelineColorBlendAttachmentState r{};  // r = r · (1 − α): dst·src
+            r.blendEnable = VK_TRUE;
+            r.srcColorBlendFactor = VK_BLEND_FACTOR_ZERO;
+            r.dstColorBlendFactor = VK_BLEND_FACTOR_SRC_COLOR;
+            r.colorBlendOp = VK_BLEND_OP_ADD;
+            r.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+            r.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            r.alphaBlendOp = VK_BLEND_OP_ADD;
+            r.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;
+            lab::PipelineBuilder builder;
+            builder.shaders(vertex_shader_, translucent_shader_)
+                .vertex_attributes(lab::kPosition)
+                .push_constants(kBoth, sizeof(ShadowConstants))
+                .cull(back);
+            nearest_[cube] = builder.color_blend(g).depth(true, true).build(vk, translucent_pass_);
+            multiply_[cube] = builder.color_blend(r).depth(false, false).build(vk, translucent_pass_);
+        }
+    }
+
+    const std::vector<int> slots = lighting.shadow_slots();
+    for (size_t i = 0; i < lighting.lights.size(); ++i) {
+        if (slots[i] < 0) continue;
+        const bool cube = lighting.lights[i].type == lab::LightDesc::Type::Point;
+        maps_.push_back(make_map(int(i), cube, clamp_resolution(lighting.lights[i].shadow.resolution, cube), translucent_));
+        layout_.push_back(std::to_string(i) + ":" + std::to_string(int(lighting.lights[i].type)) + ":" +
+                          std::to_string(lighting.lights[i].shadow.resolution));
+    }
+    layout_.push_back(translucent_ ? "translucent" : "opaque");
+    // Unused slots read 1×1 maps that say "lit"; cleared once, here, into the layouts they are read in.
+    stand_in_2d_ = make_map(-1, false, 1, true);
+    stand_in_cube_ = make_map(-1, true, 1, true);
+    vk.run_once([&](VkCommandBuffer cmd) {
+        for (Map* m : {&stand_in_2d_, &stand_in_cube_}) {
+            for (size_t f = 0; f < m->framebuffers.size(); ++f) {
+                lab::begin_offscreen_pass(cmd, depth_pass_, m->framebuffers[f], 1, false);
+                vkCmdEndRenderPass(cmd);
+                lab::begin_offscreen_pass(cmd, translucent_pass_, m->translucent_framebuffers[f], 1, true);
+                vkCmdEndRenderPass(cmd);
+            }
+        }
+    });
+}
+
+uint32_t ShadowMaps::clamp_resolution(int requested, bool cube) const {
+    const VkPhysicalDeviceLimits& limits = vk_.properties().limits;
+    uint32_t most = std::min({cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D, limits.maxFramebufferWidth,
+                              limits.maxFramebufferHeight});
+    most = std::min(most, uint32_t(std::sqrt(kMaxTexels / (cube ? 6.0 : 1.0))));
+    const uint32_t resolution = std::clamp(uint32_t(std::max(requested, 1)), 1u, most);
+    if (resolution != uint32_t(requested))
+        std::fprintf(stderr, "warning: shadow map resolution %d: at most %u here (%s), using %u\n", requested, most,
+                     cube ? "cube faces, six of them" : "the device's limit or 2^28 texels", resolution);
+    return resolution;
+}
+
+ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, bool translucent) const {
+    Map m;
+    m.light = light;
+    m.cube = cube;
+    m.resolution = resolution;
+    const VkImageUsageFlags sampled_depth = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const VkImageUsageFlags sampled_color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const uint32_t faces = cube ? 6 : 1;
+    m.depth = cube ? lab::create_image_cube(vk_, resolution, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT)
+                   : lab::create_image_2d(vk_, {resolution, resolution}, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT);
+    if (translucent) {
+        m.transmittance = cube ? lab::create_image_cube(vk_, resolution, transmittance_format_, sampled_color, VK_IMAGE_ASPECT_COLOR_BIT)
+                               : lab::create_image_2d(vk_, {resolution, resolution}, transmittance_format_, sampled_color,
+                                                      VK_IMAGE_ASPECT_COLOR_BIT);
+        // One scratch depth serves every face (the faces are rendered one after the other).
+        m.scratch_depth = lab::create_image_2d(vk_, {resolution, resolution}, depth_format_,
+                                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    }
+    for (uint32_t f = 0; f < faces; ++f) {
+        VkImageView depth_view = m.depth.view;
+        if (cube) {
+            m.face_views.push_back(lab::create_layer_view(vk_, m.depth.image, depth_format_, VK_IMAGE_ASPECT_DEPTH_BIT, f));
+            depth_view = m.face_views.back();
+        }
+        m.framebuffers.push_back(lab::make_square_framebuffer(vk_, depth_pass_, {depth_view}, resolution));
+        if (!translucent) continue;
+        VkImageView color_view = m.transmittance.view;
+        if (cube) {
+            m.transmittance_views.push_back(
+                lab::create_layer_view(vk_, m.transmittance.image, transmittance_format_, VK_IMAGE_ASPECT_COLOR_BIT, f));
+            color_view = m.transmittance_views.back();
+        }
+        m.translucent_framebuffers.push_back(
+            lab::make_square_framebuffer(vk_, translucent_pass_, {color_view, VkImageView(m.scratch_depth.view)}, resolution));
+    }
+    return m;
+}
+
+std::vector<lab::DescriptorBinding> ShadowMaps::bindings() {
+    const VkDescriptorType image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    return {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBoth},  // 3: GpuShadows
+            {image, kBoth, kMaxShadowLights},            // 4: 2D depth, nearest
+            {image, kBoth, kMaxShadowLights},            // 5: 2D depth, comparison
+            {image, kBoth, kMaxShadowLights},            // 6: cube depth, nearest
+            {image, kBoth, kMaxShadowLights},            // 7: cube depth, comparison
+            {image, kBoth, kMaxShadowLights},            // 8: 2D transmittance
+            {image, kBoth, kMaxShadowLights}};           // 9: cube transmittance
+}
+
+void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const {
+    lab::write_buffer_descriptor(vk_, set, 3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms, sizeof(GpuShadows));
+    const VkImageLayout depth = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, color = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    std::vector<VkDescriptorImageInfo> infos;  // [binding 4..9][slot]
+    for (int binding = 4; binding <= 9; ++binding) {
+        const bool cube = binding == 6 || binding == 7 || binding == 9;
+        const Map& stand_in = cube ? stand_in_cube_ : stand_in_2d_;
+        for (int slot = 0; slot < kMaxShadowLights; ++slot) {
+            const Map* m = slot < int(maps_.size()) && maps_[slot].cube == cube ? &maps_[slot] : &stand_in;
+            if (binding >= 8 && !translucent_) m = &stand_in;
+            const VkSampler sampler = binding == 5 || binding == 7 ? compare_sampler_.get() : nearest_sampler_.get();
+            infos.push_back(binding >= 8 ? VkDescriptorImageInfo{sampler, m->transmittance.view, color}
+                                         : VkDescriptorImageInfo{sampler, m->depth.view, depth});
+        }
+    }
+    std::vector<VkWriteDescriptorSet> writes;
+    for (uint32_t binding = 4; binding <= 9; ++binding) {
+        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        write.dstSet = set;
+        write.dstBinding = binding;
+        write.descriptorCount = kMaxShadowLights;
+        write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        write.pImageInfo = &infos[(binding - 4) * kMaxShadowLights];
+        writes.push_back(write);
+    }
+    vkUpdateDescriptorSets(vk_.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+bool ShadowMaps::matches(const Lighting& lighting) const {
+    std::vector<std::string> layout;
+    const std::vector<int> slots = lighting.shadow_slots();
+    bool translucent = false;
+    for (const Caster& c : objects_) translucent = translucent || (c.casts && translucent_material(lighting, c.material));
+    for (size_t i = 0; i < lighting.lights.size(); ++i)
+        if (slots[i] >= 0)
+            layout.push_back(std::to_string(i) + ":" + std::to_string(int(lighting.lights[i].type)) + ":" +
+                             std::to_string(lighting.lights[i].shadow.resolution));
+    layout.push_back(translucent ? "translucent" : "opaque");
+    return layout == layout_;
+}
+
+int ShadowMaps::kind(int slot) const {
+    if (slot < 0 || slot >= int(maps_.size())) return 0;
+    return maps_[slot].cube ? 2 : 1;
+}
+
+bool ShadowMaps::perspective(int slot) const { return kind(slot) != 0 && maps_[slot].perspective; }
+
+// Change tracking: everything a map depends on, as numbers. The light's placement and the
+// shadow pass's settings, then each caster the light can reach: its transform and opacity.
+// (Objects cannot move in this lab; the transform makes the rule hold when they can.)
+std::vector<float> ShadowMaps::key_of(const lab::LightDesc& light, const Lighting& lighting) const {
+    std::vector<float> key = {float(light.type),        light.position.x, light.position.y, light.position.z,
+                              light.direction.x,        light.direction.y, light.direction.z, light.outer_deg,
+                              light.shadow.bias,        light.shadow.slope_bias};
+    for (const Caster& c : objects_) {
+        if (!c.casts) continue;
+        if (light.type == lab::LightDesc::Type::Spot &&
+            !in_spot_cone(c.box, glm::dvec3(light.position), glm::dvec3(light.direction), light.outer_deg))
+            continue;
+        const float* m = &c.model[0][0];
+        key.insert(key.end(), m, m + 16);
+        key.push_back(lighting.materials[c.material].opacity);
+    }
+    return key;
+}
+
+void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out) {
+    *out = GpuShadows{};
+    for (size_t slot = 0; slot < maps_.size(); ++slot) {
+        Map& map = maps_[slot];
+        const lab::LightDesc& light = lighting.lights[size_t(map.light)];
+        std::vector<float> key = key_of(light, lighting);
+        if (key != map.key) {  // the light or a caster in its volume changed (or never rendered)
+            render(cmd, map, light, lighting);
+            map.key = std::move(key);
+            ++renders_;
+        }
+        // Only the lookup's numbers: the map still holds what they describe.
+        GpuShadow gpu = map.gpu;
+        gpu.params.x *= light.shadow.normal_offset / float(map.resolution);
+        out->slot[slot] = gpu;
+    }
+}
+
+// Draws the casters into the current pass: opaque ones with the bound depth-only pipeline, or
+// (translucent) the translucent ones with both translucent pipelines.
+void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting,
+                              bool translucent, const lab::LightDesc& light) const {
+    const bool spot = light.type == lab::LightDesc::Type::Spot;
+    const lab::GpuMesh* bound = nullptr;
+    for (const Caster& c : objects_) {
+        if (!c.casts || translucent_material(lighting, c.material) != translucent) continue;
+        if (spot && !in_spot_cone(c.box, glm::dvec3(light.position), glm::dvec3(light.direction), light.outer_deg)) continue;
+        const ShadowConstants constants{glm::mat4(view_projection * glm::dmat4(c.model)),
+                                        glm::vec4(1.0f - lighting.materials[c.material].opacity)};
+        if (c.mesh != bound) {
+            lab::bind_mesh(cmd, *c.mesh);
+            bound = c.mesh;
+        }
+        vkCmdPushConstants(cmd, opaque_.layout, kBoth, 0, sizeof constants, &constants);
+        vkCmdDrawIndexed(cmd, c.mesh->index_count, 1, 0, 0, 0);
+    }
+}
+
+void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting) {
+    const glm::dvec3 position(light.position), direction(light.direction);
+    LightFrustum f;
+    switch (light.type) {
+        case lab::LightDesc::Type::Directional: f = fit_directional(direction, caster_boxes_, receiver_boxes_); break;
+        case lab::LightDesc::Type::Spot: f = fit_spot(position, direction, light.outer_deg, caster_boxes_, receiver_boxes_); break;
+        case lab::LightDesc::Type::Point: f = fit_point(position, caster_boxes_, receiver_boxes_); break;
+    }
+    map.perspective = light.type != lab::LightDesc::Type::Directional;
+    // Perspective depth = a − b / distance (glm::perspectiveRH_ZO), for the cube lookup and the view.
+    const double a = f.far_plane / (f.far_plane - f.near_plane), b = f.far_plane * f.near_plane / (f.far_plane - f.near_plane);
+    map.gpu.view_projection = glm::mat4(f.view_projection);
+    map.gpu.position = glm::vec4(light.position, 1.0f);
+    // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
+    // normal_offset / resolution.
+    map.gpu.params = glm::vec4(float(f.texel), map.perspective ? float(a) : 0.0f, map.perspective ? float(b) : 0.0f, 0.0f);
+
+    const uint32_t faces = map.cube ? 6 : 1;
+    for (uint32_t face = 0; face < faces; ++face) {
+        const glm::dmat4& view_projection = map.cube ? f.faces[face] : f.view_projection;
+        lab::begin_offscreen_pass(cmd, depth_pass_, map.framebuffers[face], map.resolution, false);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
+        // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
+        // (grows with how steeply the triangle's depth changes across a texel).
+        vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
+        draw_casters(cmd, view_projection, lighting, false, light);
+        vkCmdEndRenderPass(cmd);
+        if (!translucent_) continue;
+        lab::begin_offscreen_pass(cmd, translucent_pass_, map.translucent_framebuffers[face], map.resolution, true);
+        for (const auto* pipeline : {&nearest_[map.cube], &multiply_[map.cube]}) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
+            draw_casters(cmd, view_projection, lighting, true, light);
+        }
+        vkCmdEndRenderPass(cmd);
+    }
+}

@@ -1,0 +1,104 @@
+// shadow_maps.h — lab 4's first pass: each shadow-casting light (up to kMaxShadowLights) renders
+// the scene's casters from its own point of view into a depth map — 2D for a directional or spot
+// light, a cube (six faces) for a point light — before the camera's pass reads them
+// (shaders/lab4_shadows/shadows.glsl). When the scene has translucent casters, each map gets a
+// transmittance map beside it. A map is rendered again only when its light, or a caster in its
+// volume, changed: a static scene renders its maps once.
+#pragma once
+
+#include "buffer.h"
+#include "gpu_mesh.h"
+#include "light_frustum.h"
+#include "lights.h"
+#include "pipeline_builder.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+// Per shadow slot, what the lookup needs (std140, see shadows.glsl).
+struct GpuShadow {
+    glm::mat4 view_projection;  // world → the map's clip space (2D maps)
+    glm::vec4 position;         // xyz: the light
+    glm::vec4 params;           // x: normal offset (world; perspective: per unit distance), y, z: depth = y − z / distance
+};
+struct GpuShadows {
+    GpuShadow slot[kMaxShadowLights];
+};
+
+// An object as the shadow pass sees it.
+struct Caster {
+    const lab::GpuMesh* mesh;
+    glm::mat4 model;
+    Box box;            // world-space bounds
+    uint32_t material;  // index into Lighting::materials (its opacity)
+    bool casts;         // ObjectDesc::cast_shadows
+};
+
+class ShadowMaps {
+public:
+    ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects, const Lighting& lighting,
+               const std::string& shader_dir);
+
+    // Set 0's bindings 3..9 (after the renderer's three): the slots' data and maps.
+    static std::vector<lab::DescriptorBinding> bindings();
+    // Points bindings 3..9 of `set` at `uniforms` and the maps (1×1 stand-ins for unused slots).
+    void write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const;
+
+    // Outside any render pass, before the camera's: renders the maps whose light or casters
+    // changed since they were last rendered, and writes every slot's data to `out`.
+    void record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out);
+    // True when these maps still fit `lighting` (the same lights cast shadows, with the same
+    // resolutions); if not, the renderer is rebuilt (new images).
+    bool matches(const Lighting& lighting) const;
+    bool translucent() const { return translucent_; }  // the maps carry transmittance
+    int maps() const { return int(maps_.size()); }
+    int renders() const { return renders_; }  // maps rendered so far (a cube counts once)
+    // Where the shadow-map view shows slot `slot`: its kind (0 none, 1 2D, 2 cube), perspective?
+    int kind(int slot) const;
+    bool perspective(int slot) const;
+
+private:
+    struct Map {
+        int light = -1;  // index into Lighting::lights
+        bool cube = false;
+        uint32_t resolution = 1;
+        lab::Image depth;
+        std::vector<lab::Handle<VkImageView>> face_views;     // cube: one per face
+        std::vector<lab::Handle<VkFramebuffer>> framebuffers;  // [face]
+        lab::Image transmittance;  // translucent scenes: r = Π(1 − α), g = nearest translucent depth
+        lab::Image scratch_depth;  // its depth test (the nearest translucent face), not kept
+        std::vector<lab::Handle<VkImageView>> transmittance_views, scratch_views;
+        std::vector<lab::Handle<VkFramebuffer>> translucent_framebuffers;
+        std::vector<float> key;  // what the map was rendered from (change tracking)
+        GpuShadow gpu{};
+        bool perspective = false;
+    };
+    Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
+    std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
+    void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
+    void draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting, bool translucent,
+                      const lab::LightDesc& light) const;
+    uint32_t clamp_resolution(int requested, bool cube) const;
+
+    const lab::VulkanContext& vk_;
+    std::vector<Caster> objects_;
+    std::vector<Box> caster_boxes_, receiver_boxes_;
+    VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
+    VkFormat transmittance_format_ = VK_FORMAT_R32G32_SFLOAT;
+    bool translucent_ = false;  // some caster is translucent
+    bool linear_filter_ = true; // the depth format filters linearly (else bilinear falls back to nearest)
+    lab::Handle<VkRenderPass> depth_pass_;        // depth only
+    lab::Handle<VkRenderPass> translucent_pass_;  // transmittance + scratch depth
+    lab::Handle<VkShaderModule> vertex_shader_, translucent_shader_;
+    lab::PipelineBuilder::Result opaque_;                    // depth only, depth bias
+    std::array<lab::PipelineBuilder::Result, 2> nearest_;    // [cube]: g = nearest translucent depth
+    std::array<lab::PipelineBuilder::Result, 2> multiply_;   // [cube]: r ×= 1 − α
+    lab::Handle<VkSampler> nearest_sampler_, compare_sampler_;
+    std::vector<Map> maps_;          // one per shadow slot, in slot order
+    Map stand_in_2d_, stand_in_cube_;  // 1×1, cleared: what unused slots' descriptors point at
+    std::vector<std::string> layout_;  // what matches() compares
+    int renders_ = 0;
+};

@@ -1,0 +1,63 @@
+#include "shadows_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <string>
+
+namespace {
+const char* const kTypes[] = {"directional", "point", "spot"};
+const char* const kFilters[] = {"nearest (manual compare)", "bilinear (comparison sampler)"};
+const int kResolutions[] = {1, 64, 128, 256, 512, 1024, 2048, 4096, 8192};
+}  // namespace
+
+void shadows_panel(Lighting& l, float frame_ms, int renders) {
+    ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 390.0f, ImGui::GetIO().DisplaySize.y - 330.0f),
+                            ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Shadows");
+    ImGui::Text("%.2f ms/frame, %d shadow map renders so far", frame_ms, renders);
+    ImGui::Checkbox("animate lights", &l.animate_lights);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every light circles the Y axis: its map is rendered every frame");
+    // The shadow-map view: one light's map (a point light's six faces) in the bottom right.
+    std::string current = l.shadow_view < 0 || l.shadow_view >= int(l.lights.size())
+                              ? "none"
+                              : std::string(kTypes[int(l.lights[size_t(l.shadow_view)].type)]) + " " + std::to_string(l.shadow_view);
+    if (ImGui::BeginCombo("shadow-map view", current.c_str())) {
+        if (ImGui::Selectable("none", l.shadow_view < 0)) l.shadow_view = -1;
+        for (size_t i = 0; i < l.lights.size(); ++i) {
+            if (!l.lights[i].cast_shadows) continue;
+            const std::string name = std::string(kTypes[int(l.lights[i].type)]) + " " + std::to_string(i);
+            if (ImGui::Selectable(name.c_str(), l.shadow_view == int(i))) l.shadow_view = int(i);
+        }
+        ImGui::EndCombo();
+    }
+    for (size_t i = 0; i < l.lights.size(); ++i) {
+        lab::LightDesc& light = l.lights[i];
+        ImGui::PushID(int(i));
+        ImGui::Checkbox("##casts", &light.cast_shadows);
+        ImGui::SameLine();
+        if (ImGui::TreeNode("light", "%s %zu casts shadows", kTypes[int(light.type)], i)) {
+            lab::ShadowDesc& s = light.shadow;
+            if (ImGui::BeginCombo("resolution", std::to_string(s.resolution).c_str())) {
+                for (int r : kResolutions)
+                    if (ImGui::Selectable(std::to_string(r).c_str(), s.resolution == r)) s.resolution = r;
+                ImGui::EndCombo();
+            }
+            ImGui::SliderInt("PCF N (N x N taps)", &s.pcf, 1, 15);
+            s.pcf = std::clamp(s.pcf | 1, 1, 15);  // odd: the kernel has a centre tap
+            int filter = int(s.filter);
+            if (ImGui::Combo("filter", &filter, kFilters, 2)) s.filter = lab::ShadowDesc::Filter(filter);
+            ImGui::DragFloat("depth bias", &s.bias, 1.0f, 0.0f, 1e7f, "%.1f", ImGuiSliderFlags_Logarithmic);
+            ImGui::DragFloat("slope bias", &s.slope_bias, 0.05f, 0.0f, 100.0f, "%.2f");
+            ImGui::DragFloat("normal offset (texels)", &s.normal_offset, 0.05f, 0.0f, 100.0f, "%.2f");
+            // Keep the values the loader would accept.
+            s.bias = std::max(s.bias, 0.0f);
+            s.slope_bias = std::max(s.slope_bias, 0.0f);
+            s.normal_offset = std::max(s.normal_offset, 0.0f);
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+    ImGui::End();
+}

@@ -1,0 +1,75 @@
+#include "textures_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace {
+const char* const kFilters[] = {"nearest", "linear"};
+const char* const kMipmaps[] = {"none", "nearest", "linear"};
+const char* const kWraps[] = {"repeat", "clamp", "mirror"};
+
+template <typename Enum>
+bool enum_combo(const char* label, Enum& value, const char* const* items, int count) {
+    int v = int(value);
+    if (!ImGui::Combo(label, &v, items, count)) return false;
+    value = Enum(v);
+    return true;
+}
+
+// A map path or "procedural:NAME"; Enter applies it, an empty field removes the map.
+bool edit_map(const char* label, std::string& map) {
+    char text[512];
+    std::snprintf(text, sizeof text, "%s", map.c_str());
+    if (!ImGui::InputText(label, text, sizeof text, ImGuiInputTextFlags_EnterReturnsTrue)) return false;
+    const std::string value = text, prefix = "procedural:";
+    const auto& names = lab::procedural_texture_names();
+    if (value.rfind(prefix, 0) == 0 &&
+        std::find(names.begin(), names.end(), value.substr(prefix.size())) == names.end())
+        return false;  // an unknown procedural name is ignored (a scene file would be rejected)
+    map = value;
+    return true;
+}
+}  // namespace
+
+bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, float frame_ms) {
+    ImGui::SetNextWindowPos(ImVec2(10.0f, ImGui::GetIO().DisplaySize.y - 330.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Textures");
+    ImGui::Text("%.2f ms/frame", frame_ms);
+    bool rebuild = ImGui::Checkbox("mip-level view", &l.mip_view);
+    ImGui::TextDisabled("level 0 white, 1 red, 2 yellow, 3 green, 4 cyan, 5 blue, 6+ magenta");
+    for (const std::string& warning : warnings) ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1.0f), "%s", warning.c_str());
+    for (size_t i = 0; i < l.materials.size(); ++i) {
+        lab::MaterialDesc& m = l.materials[i];
+        ImGui::PushID(int(i));
+        if (ImGui::TreeNode("material", "%s%s", l.material_names[i].c_str(), m.has_maps() ? "" : " (no maps)")) {
+            rebuild |= edit_map("albedo map", m.albedo_map);
+            rebuild |= edit_map("specular map", m.specular_map);
+            rebuild |= edit_map("emissive map", m.emissive_map);
+            ImGui::DragFloat("emissive strength", &m.emissive_strength, 0.01f, 0.0f, 100.0f);
+            ImGui::DragFloat2("uv scale", &m.uv_scale.x, 0.01f);
+            ImGui::DragFloat2("uv offset", &m.uv_offset.x, 0.01f);
+            rebuild |= enum_combo("filter", m.sampler.filter, kFilters, 2);
+            rebuild |= enum_combo("mipmaps", m.sampler.mipmaps, kMipmaps, 3);
+            rebuild |= ImGui::SliderInt("anisotropy", &m.sampler.anisotropy, 1, 16);
+            rebuild |= enum_combo("wrap", m.sampler.wrap, kWraps, 3);
+            rebuild |= ImGui::Checkbox("distorted sampling (albedo)", &m.distorted);
+            if (m.distorted) {
+                ImGui::DragFloat2("amplitude", &m.distortion.amplitude.x, 0.001f, -1.0f, 1.0f);
+                ImGui::DragFloat2("frequency", &m.distortion.frequency.x, 0.1f);
+                ImGui::DragFloat2("position frequency", &m.distortion.position_frequency.x, 0.05f);
+                ImGui::DragFloat2("scales", &m.distortion.scales.x, 0.01f);
+                ImGui::SliderFloat2("weights", &m.distortion.weights.x, 0.0f, 1.0f);
+            }
+            // Keep the values the loader would accept.
+            m.emissive_strength = std::max(m.emissive_strength, 0.0f);
+            m.sampler.anisotropy = std::clamp(m.sampler.anisotropy, 1, 16);
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+    ImGui::End();
+    return rebuild;
+}

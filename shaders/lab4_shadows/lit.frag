@@ -1,0 +1,101 @@
+#version 450
+// Lab 4: with shadows (shadows.glsl) and the material's opacity as alpha.
+// Lab 3: the lighting equation per pixel (flat and Phong shading) with the material's texture
+// maps, or the interpolated vertex color (Gouraud: untextured). See docs/lighting.md.
+#extension GL_GOOGLE_include_directive : require
+#include "lighting.glsl"
+
+layout(location = 0) in vec3 in_world_position;
+layout(location = 1) in vec3 in_world_normal;
+layout(location = 2) in vec3 in_world_tangent;
+layout(location = 3) in vec3 in_gouraud_color;
+layout(location = 4) in float in_bad;
+layout(location = 5) in vec2 in_uv;
+
+layout(location = 0) out vec4 out_color;
+
+// Lab 3: the material's maps (set 1), in the module built with TEXTURED (textured.frag.spv) for
+// materials that have maps; lit.frag.spv declares no samplers. The sampler decodes sRGB to
+// linear and filters (mipmaps, anisotropy) as the material's sampler says.
+#ifdef TEXTURED
+layout(set = 1, binding = 0) uniform sampler2D albedo_map;
+layout(set = 1, binding = 1) uniform sampler2D specular_map;
+layout(set = 1, binding = 2) uniform sampler2D emissive_map;
+
+// The seed's distorted-UV multi-sampling: a small wobble of the UVs that also depends on the
+// world position P, blended with the map at two other scales. Repeats of a tiled map no longer
+// line up, so the tiling is much harder to see.
+vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
+    if (!DISTORTED) return texture(albedo_map, uv).rgb;
+    // EXERCISE distorted_uv: with (u, v) = uv, amplitude (k0.xy), frequency (k0.zw), position_frequency (k1.xy), scales (k1.zw) and weights (k2.xy): d = uv + (k0.x·sin(k0.z·v + k1.x·P.y), k0.y·cos(k0.w·u + k1.y·P.x)), then mix(mix(A(d), A(k1.z·uv), k2.x), A(k1.w·uv), k2.y). Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers.
+    // STUB: return texture(albedo_map, uv).rgb;  // no distortion: the tiling shows as plainly as without it
+    const vec4 k0 = m.distortion[0], k1 = m.distortion[1], k2 = m.distortion[2];
+    const vec2 d = uv + vec2(k0.x * sin(k0.z * uv.y + k1.x * P.y), k0.y * cos(k0.w * uv.x + k1.y * P.x));
+    const vec3 t0 = texture(albedo_map, d).rgb, t1 = texture(albedo_map, k1.z * uv).rgb;
+    return mix(mix(t0, t1, k2.x), texture(albedo_map, k1.w * uv).rgb, k2.y);
+    // END EXERCISE
+}
+
+// a = albedo·A(uv'), s = specular·S(uv'), e = emissive + emissive_strength·E(uv') with
+// uv' = uv·uv_scale + uv_offset; a map the material lacks is not sampled at all.
+Material textured(Material m, vec2 uv, vec3 P) {
+    // EXERCISE uv_transform: uv' = uv·uv_scale + uv_offset, with uv_transform = (scale.x, scale.y, offset.x, offset.y). Checked by Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
+    // STUB: // the UVs as they are: no tiling, no shift
+    uv = uv * m.uv_transform.xy + m.uv_transform.zw;
+    // END EXERCISE
+    // EXERCISE texture_terms: albedo ×= A(uv) (albedo_texel), specular ×= S(uv), emissive += emissive_strength (distortion[2].z)·E(uv), each only if the material has that map (ALBEDO_MAP, ...). Checked by Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
+    // STUB: // the maps are not read: every textured material shows its plain colours
+    if (ALBEDO_MAP) m.albedo.rgb *= albedo_texel(m, uv, P);
+    if (SPECULAR_MAP) m.specular.rgb *= texture(specular_map, uv).rgb;
+    if (EMISSIVE_MAP) m.emissive.rgb += m.distortion[2].z * texture(emissive_map, uv).rgb;
+    // END EXERCISE
+    return m;
+}
+
+// Mip-level view: the level the first map's lookup reads (fractional between two levels),
+// as a colour: 0 white, 1 red, 2 yellow, 3 green, 4 cyan, 5 blue, 6 and up magenta.
+vec3 mip_tint(vec2 uv) {
+    const vec3 colors[7] = vec3[](vec3(1, 1, 1), vec3(1, 0, 0), vec3(1, 1, 0), vec3(0, 1, 0), vec3(0, 1, 1),
+                                  vec3(0, 0, 1), vec3(1, 0, 1));
+    const vec2 lod = ALBEDO_MAP ? textureQueryLod(albedo_map, uv) : SPECULAR_MAP ? textureQueryLod(specular_map, uv)
+                                                                                  : textureQueryLod(emissive_map, uv);
+    const float level = clamp(lod.x, 0.0, 6.0);
+    return mix(colors[int(floor(level))], colors[min(int(floor(level)) + 1, 6)], fract(level));
+}
+#else
+Material textured(Material m, vec2 uv, vec3 P) { return m; }
+vec3 mip_tint(vec2 uv) { return vec3(1.0); }
+#endif
+
+void main() {
+    vec3 color;
+    const float alpha = materials[object.material].albedo.a;  // lab 4: opacity (blended if < 1)
+    if (SHADING == SHADING_GOURAUD) {
+        color = in_gouraud_color;
+        lab_bad = in_bad > 0.0;
+    } else {
+        const vec3 P = in_world_position;
+        const vec3 to_eye = frame.camera_position.xyz - P;
+        // The triangle's own (geometric) normal from the screen-space derivatives of the
+        // position, turned towards the eye: every drawn triangle is a front face.
+        vec3 face = safe_normalize(cross(dFdx(P), dFdy(P)), safe_normalize(to_eye, vec3(0.0, 0.0, 1.0)));
+        if (dot(face, to_eye) < 0.0) face = -face;
+        // Flat: the face normal. Phong: the interpolated normal, renormalized (a zero
+        // interpolated normal falls back to the face normal).
+        // Lab 4: a translucent object's back faces are drawn too; their normal turns to the viewer.
+        const vec3 N = SHADING == SHADING_FLAT ? face : (gl_FrontFacing ? 1.0 : -1.0) * safe_normalize(in_world_normal, face);
+        const vec3 V = safe_normalize(to_eye, N);  // the eye on the surface: V = N
+        color = shade(textured(materials[object.material], in_uv, P), P, N, V, in_world_tangent);
+        if (MIP_VIEW && (ALBEDO_MAP || SPECULAR_MAP || EMISSIVE_MAP))
+            color = mix(color, mip_tint(in_uv * materials[object.material].uv_transform.xy), 0.7);
+    }
+    // The self-test proves the check works: a quiet NaN (exponent all ones, top mantissa bit)
+    // made from the bits of a uniform (ambient.a = 0), so no compiler can know it is a NaN and
+    // fold it away (as it may fold x / x to 1), added to the color like a real bad intermediate.
+    if (NAN_CHECK == 2) color += vec3(uintBitsToFloat(0x7fc00000u | floatBitsToUint(frame.ambient.a)));
+    if (NAN_CHECK != 0) {
+        check(color);
+        if (lab_bad) color = vec3(1.0, 0.0, 1.0);
+    }
+    out_color = vec4(color, alpha);
+}

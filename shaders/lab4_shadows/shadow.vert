@@ -1,0 +1,15 @@
+#version 450
+// shadow.vert — lab 4's shadow pass: where each caster's triangles land in the light's map.
+// Position-only vertex input; opaque casters have no fragment shader at all (the pass writes
+// depth only), translucent ones add translucent_shadow.frag.
+
+layout(push_constant) uniform ShadowConstants {
+    mat4 light_mvp;      // model → the light's clip space (one face of a cube map)
+    vec4 transmittance;  // translucent casters: x = 1 − opacity
+} caster;
+
+layout(location = 0) in vec3 in_position;
+
+void main() {
+    gl_Position = caster.light_mvp * vec4(in_position, 1.0);
+}

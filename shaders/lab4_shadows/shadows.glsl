@@ -1,0 +1,151 @@
+// shadows.glsl — lab 4: how much of a light reaches world point P, read from the light's shadow
+// map (lab4_shadows/shadow_maps.cpp renders them before the camera's pass). Included by
+// lighting.glsl. 1 = lit, 0 = behind an opaque caster, in between: partly covered (PCF) or
+// behind translucent casters, each letting 1 − opacity through.
+
+// --- per shadow slot (up to 4 shadow-casting lights), specialization constants (lights.h) ---
+// A pipeline contains only the lookups its scene needs, each PCF loop with a fixed trip count;
+// a scene without shadow-casting lights has none at all (SHADOWS is false).
+layout(constant_id = 13) const int SHADOW_KIND_0 = 0;  // 0 no map, 1 2D (directional, spot), 2 cube (point)
+layout(constant_id = 14) const int SHADOW_PCF_0 = 1;   // N: an N×N kernel of taps
+layout(constant_id = 15) const int SHADOW_FILTER_0 = 0;  // 0 nearest: manual compare, 1 bilinear: comparison sampler
+layout(constant_id = 16) const bool SHADOW_TRANSLUCENT_0 = false;  // a transmittance map beside the depth map
+layout(constant_id = 17) const int SHADOW_KIND_1 = 0;
+layout(constant_id = 18) const int SHADOW_PCF_1 = 1;
+layout(constant_id = 19) const int SHADOW_FILTER_1 = 0;
+layout(constant_id = 20) const bool SHADOW_TRANSLUCENT_1 = false;
+layout(constant_id = 21) const int SHADOW_KIND_2 = 0;
+layout(constant_id = 22) const int SHADOW_PCF_2 = 1;
+layout(constant_id = 23) const int SHADOW_FILTER_2 = 0;
+layout(constant_id = 24) const bool SHADOW_TRANSLUCENT_2 = false;
+layout(constant_id = 25) const int SHADOW_KIND_3 = 0;
+layout(constant_id = 26) const int SHADOW_PCF_3 = 1;
+layout(constant_id = 27) const int SHADOW_FILTER_3 = 0;
+layout(constant_id = 28) const bool SHADOW_TRANSLUCENT_3 = false;
+const bool SHADOWS = SHADOW_KIND_0 != 0 || SHADOW_KIND_1 != 0 || SHADOW_KIND_2 != 0 || SHADOW_KIND_3 != 0;
+
+struct ShadowSlot {
+    mat4 view_projection;  // world → the map's clip space (2D maps)
+    vec4 position;         // xyz: the light (cube maps: the cube's centre)
+    vec4 params;           // x: normal offset in world units (perspective maps: per unit of distance),
+                           // y, z: a cube map's depth = y − z / distance along the face's axis;
+                           // z > 0 also marks a perspective 2D map (spot)
+};
+layout(std140, set = 0, binding = 3) uniform Shadows { ShadowSlot shadow_slots[4]; };
+// The same depth maps twice: read as numbers (nearest) and through a comparison sampler
+// (bilinear: each tap compares four texels with the reference and filters the results).
+layout(set = 0, binding = 4) uniform sampler2D shadow_depth[4];
+layout(set = 0, binding = 5) uniform sampler2DShadow shadow_compare[4];
+layout(set = 0, binding = 6) uniform samplerCube cube_depth[4];
+layout(set = 0, binding = 7) uniform samplerCubeShadow cube_compare[4];
+// Translucent casters: r = Π(1 − opacity) of the front faces (as the light sees them) along
+// the texel's ray, g = the depth of the nearest one.
+layout(set = 0, binding = 8) uniform sampler2D translucency[4];
+layout(set = 0, binding = 9) uniform samplerCube cube_translucency[4];
+
+// A receiver this close behind the nearest translucent caster's depth is that caster itself.
+const float TRANSLUCENT_EPSILON = 1e-4;
+
+// One tap's light: 1 or 0 from the depth compare, times the translucent casters' transmittance
+// when the point lies behind the nearest of them.
+float tap(float lit, bool translucent, vec2 transmittance, float ref) {
+    if (translucent && ref > transmittance.g + TRANSLUCENT_EPSILON) lit *= transmittance.r;
+    return lit;
+}
+
+// Directional and spot lights: P projected into the map; PCF averages N×N taps one texel apart.
+float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D translucent_map, int pcf, int filter_mode,
+                bool translucent, ShadowSlot s, vec3 P, vec3 N) {
+    // Normal offset: look the map up a little off the surface (in texels), so a surface does not
+    // shadow itself where the map's texel stands at an angle to it (acne).
+    const bool perspective = s.params.z > 0.0;
+    const vec3 at = P + N * s.params.x * (perspective ? length(P - s.position.xyz) : 1.0);
+    const vec4 clip = s.view_projection * vec4(at, 1.0);
+    if (!(clip.w > 0.0)) return 1.0;  // behind a spot light: outside its cone anyway
+    const vec3 ndc = clip.xyz / clip.w;
+    const vec2 uv = ndc.xy * 0.5 + 0.5;
+    const float ref = ndc.z;  // P's depth as the light sees it
+    // Outside the map's coverage nothing was fitted to cast onto it: lit.
+    if (!(ref >= 0.0 && ref <= 1.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))) return 1.0;
+    const vec2 size = vec2(textureSize(depth_map, 0));
+    float sum = 0.0;
+    for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
+        for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
+            const vec2 t = uv + vec2(x, y) / size;
+            // The map already holds depth + bias (vkCmdSetDepthBias): lit when P is not farther.
+            float lit = ref <= texture(depth_map, t).r ? 1.0 : 0.0;
+            if (filter_mode == 1) {
+                // Bilinear: the comparison sampler compares the four texels around t with ref at
+                // once (textureGather), the results are weighted like a linear filter's. (By hand:
+                // a comparison sampler's LINEAR filter needs a depth format the device filters.)
+                const vec4 c = textureGather(compare_map, t, ref);  // (i0,j1) (i1,j1) (i1,j0) (i0,j0)
+                const vec2 f = fract(t * size - 0.5);
+                lit = mix(mix(c.w, c.z, f.x), mix(c.x, c.y, f.x), f.y);
+            }
+            sum += tap(lit, translucent, translucent ? texture(translucent_map, t).rg : vec2(1.0), ref);
+        }
+    }
+    return sum / float(pcf * pcf);
+}
+
+// The cube map's depth of P for the face that direction d falls in: that face's axis is d's
+// largest coordinate, P's distance along it gives the perspective depth the pass stored.
+float cube_depth_of(vec3 v, vec3 d, ShadowSlot s) {
+    const vec3 a = abs(d);
+    const float z = a.x >= a.y && a.x >= a.z ? abs(v.x) : (a.y >= a.z ? abs(v.y) : abs(v.z));
+    return s.params.y - s.params.z / max(z, 1e-30);
+}
+
+// Point lights: the direction from the light to P picks the face and texel. PCF taps step one
+// texel across the face; a tap past the face's edge reads the neighbouring face (cube sampling
+// is seamless in Vulkan), compared with P's depth *in that face*, so edges show no seam.
+float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerCube translucent_map, int pcf,
+                  int filter_mode, bool translucent, ShadowSlot s, vec3 P, vec3 N) {
+    vec3 v = P - s.position.xyz;
+    const vec3 a0 = abs(v);
+    v += N * s.params.x * max(a0.x, max(a0.y, a0.z));  // normal offset, texels grow with distance
+    const vec3 a = abs(v);
+    const float z = max(a.x, max(a.y, a.z));
+    if (!(z > 0.0)) return 1.0;  // P at the light itself
+    const vec3 axis = a.x >= a.y && a.x >= a.z ? vec3(1, 0, 0) : (a.y >= a.z ? vec3(0, 1, 0) : vec3(0, 0, 1));
+    const vec3 u = axis.x > 0.0 ? vec3(0, 1, 0) : vec3(1, 0, 0);
+    const vec3 w = cross(axis, u);
+    const float step = 2.0 * z / float(textureSize(depth_map, 0).x);  // one texel at P's distance
+    float sum = 0.0;
+    for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
+        for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
+            const vec3 d = v + (float(x) * u + float(y) * w) * step;
+            const float ref = cube_depth_of(v, d, s);
+            if (ref > 1.0) {  // beyond the far plane, where the fit put no receiver: lit
+                sum += 1.0;
+                continue;
+            }
+            const float lit = filter_mode == 1 ? texture(compare_map, vec4(d, ref)) : (ref <= texture(depth_map, d).r ? 1.0 : 0.0);
+            sum += tap(lit, translucent, translucent ? texture(translucent_map, d).rg : vec2(1.0), ref);
+        }
+    }
+    return sum / float(pcf * pcf);
+}
+
+// The slot's lookup with the slot's constants (samplers are picked with constant indices).
+float shadow_factor(int slot, vec3 P, vec3 N) {
+    switch (slot) {
+        case 0:
+            if (SHADOW_KIND_0 == 1) return shadow_2d(shadow_depth[0], shadow_compare[0], translucency[0], SHADOW_PCF_0, SHADOW_FILTER_0, SHADOW_TRANSLUCENT_0, shadow_slots[0], P, N);
+            if (SHADOW_KIND_0 == 2) return shadow_cube(cube_depth[0], cube_compare[0], cube_translucency[0], SHADOW_PCF_0, SHADOW_FILTER_0, SHADOW_TRANSLUCENT_0, shadow_slots[0], P, N);
+            break;
+        case 1:
+            if (SHADOW_KIND_1 == 1) return shadow_2d(shadow_depth[1], shadow_compare[1], translucency[1], SHADOW_PCF_1, SHADOW_FILTER_1, SHADOW_TRANSLUCENT_1, shadow_slots[1], P, N);
+            if (SHADOW_KIND_1 == 2) return shadow_cube(cube_depth[1], cube_compare[1], cube_translucency[1], SHADOW_PCF_1, SHADOW_FILTER_1, SHADOW_TRANSLUCENT_1, shadow_slots[1], P, N);
+            break;
+        case 2:
+            if (SHADOW_KIND_2 == 1) return shadow_2d(shadow_depth[2], shadow_compare[2], translucency[2], SHADOW_PCF_2, SHADOW_FILTER_2, SHADOW_TRANSLUCENT_2, shadow_slots[2], P, N);
+            if (SHADOW_KIND_2 == 2) return shadow_cube(cube_depth[2], cube_compare[2], cube_translucency[2], SHADOW_PCF_2, SHADOW_FILTER_2, SHADOW_TRANSLUCENT_2, shadow_slots[2], P, N);
+            break;
+        case 3:
+            if (SHADOW_KIND_3 == 1) return shadow_2d(shadow_depth[3], shadow_compare[3], translucency[3], SHADOW_PCF_3, SHADOW_FILTER_3, SHADOW_TRANSLUCENT_3, shadow_slots[3], P, N);
+            if (SHADOW_KIND_3 == 2) return shadow_cube(cube_depth[3], cube_compare[3], cube_translucency[3], SHADOW_PCF_3, SHADOW_FILTER_3, SHADOW_TRANSLUCENT_3, shadow_slots[3], P, N);
+            break;
+    }
+    return 1.0;  // casts no shadow
+}
