@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # window_cost.sh — what a window frame costs next to a headless frame and vkcube's.
 #
-# For each lab: wall time of --frames 100 and --frames 600, in a window and
-# headless, and of vkcube (FIFO, same window size) — the per-frame cost is
-# (T(600) − T(100)) / 500, which removes start-up and shutdown. Three rounds;
-# compare the ratios within a round (the machine is shared, absolute numbers drift).
+# For each lab: wall time and CPU time (user + system, all threads) of --frames 100 and
+# --frames 600, in a window and headless, and of vkcube (FIFO, same window size) — the
+# per-frame cost is (T(600) − T(100)) / 500, which removes start-up and shutdown. Each figure
+# is printed as wall/cpu in ms per frame. Three rounds; compare the ratios within a round (the
+# machine is shared: wall time drifts with the load, CPU time much less).
 # Then the idle CPU of a lab window that nothing happens to (from /proc/PID/stat, 10 s).
 #   bash bench/window_cost.sh [lab ...]        (default: every lab built)
+#   ROUNDS=2 IDLE=0 SHORT=50 LONG=250 bash bench/window_cost.sh lab2_lighting
+#        (2 rounds, skip the idle measurement, (T(250) − T(50)) / 200 for a slow lab)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
@@ -18,6 +21,7 @@ if ((${#labs[@]} == 0)); then
 fi
 export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
 rounds="${ROUNDS:-3}"
+short="${SHORT:-100}" long="${LONG:-600}"  # frame counts of the two runs per figure
 tmp=$(mktemp -d)
 if [ -z "${DISPLAY:-}" ]; then
   Xvfb :97 -screen 0 1600x900x24 >/dev/null 2>&1 &
@@ -29,35 +33,38 @@ else
   trap 'rm -rf "$tmp"' EXIT
 fi
 
-seconds() {  # wall time of a command, in seconds
-  local start end
-  start=$(date +%s.%N)
-  "$@" >/dev/null 2>&1
-  end=$(date +%s.%N)
-  python3 -c "print($end - $start)"
+seconds() {  # "wall cpu" of a command, in seconds (cpu: user + system of all its threads)
+  python3 - "$@" <<'PY'
+import os, subprocess, sys, time
+start = time.monotonic()
+child = subprocess.Popen(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+_, _, usage = os.wait4(child.pid, 0)
+print(time.monotonic() - start, usage.ru_utime + usage.ru_stime)
+PY
 }
-per_frame() {  # ms per frame of "command --frames N" style runs: $1 = t100, $2 = t600
-  python3 -c "print('%.2f' % (($2 - $1) * 1000 / 500))"
+per_frame() {  # "wall/cpu" ms per frame of "command --frames N" style runs: $1 = T(short), $2 = T(long)
+  python3 -c "a = '$1'.split(); b = '$2'.split(); print('%.2f/%.2f' % tuple((float(b[i]) - float(a[i])) * 1000 / ($long - $short) for i in (0, 1)))"
 }
 
 for round in $(seq "$rounds"); do
   line="round $round:"
   if command -v vkcube >/dev/null; then
-    a=$(seconds vkcube --width 1280 --height 720 --present_mode 2 --c 100)
-    b=$(seconds vkcube --width 1280 --height 720 --present_mode 2 --c 600)
+    a=$(seconds vkcube --width 1280 --height 720 --present_mode 2 --c "$short")
+    b=$(seconds vkcube --width 1280 --height 720 --present_mode 2 --c "$long")
     line+=" vkcube_fifo $(per_frame "$a" "$b")"
   fi
   for lab in "${labs[@]}"; do
     exe="$build/$lab/$lab"
-    a=$(seconds "$exe" --frames 100); b=$(seconds "$exe" --frames 600)
+    a=$(seconds "$exe" --frames "$short"); b=$(seconds "$exe" --frames "$long")
     w=$(per_frame "$a" "$b")
-    a=$(seconds "$exe" --frames 100 --out "$tmp/h.png"); b=$(seconds "$exe" --frames 600 --out "$tmp/h.png")
+    a=$(seconds "$exe" --frames "$short" --out "$tmp/h.png"); b=$(seconds "$exe" --frames "$long" --out "$tmp/h.png")
     h=$(per_frame "$a" "$b")
     line+=" | $lab window $w headless $h"
   done
-  echo "$line ms/frame"
+  echo "$line (wall/cpu ms/frame)"
 done
 
+[ "${IDLE:-1}" = 0 ] && exit 0  # IDLE=0: frame costs only
 for lab in "${labs[@]}"; do
   "$build/$lab/$lab" >/dev/null 2>&1 &
   pid=$!

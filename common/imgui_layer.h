@@ -1,10 +1,13 @@
-// imgui_layer.h — Dear ImGui (1.86, GLFW + Vulkan backends) drawn inside the lab's render pass.
+// imgui_layer.h — Dear ImGui (1.86): input through its GLFW backend, drawn by ImGuiRenderer
+// (a cached overlay blended inside the lab's render pass).
 #pragma once
 
+#include "imgui_renderer.h"
 #include "vk_context.h"
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
 struct GLFWwindow;
 struct GLFWcursor;
@@ -15,14 +18,18 @@ class Window;
 
 class ImGuiLayer {
 public:
-    ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass render_pass, uint32_t image_count);
+    ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass render_pass);
     ~ImGuiLayer();
     ImGuiLayer(const ImGuiLayer&) = delete;
     ImGuiLayer& operator=(const ImGuiLayer&) = delete;
 
     // Before any ImGui:: call of this frame; `dt_seconds` since the previous UI frame.
     void new_frame(Window& window, float dt_seconds);
-    void render(VkCommandBuffer cmd);  // at the end of the render pass
+    // After the frame's ImGui:: calls, before its render pass begins: ends the UI frame and
+    // redraws the overlay if the panels changed (see imgui_renderer.h).
+    void prepare(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent);
+    void render(VkCommandBuffer cmd);  // at the end of the render pass: blends the panels over the picture
+    uint64_t redraw_count() const { return renderer_->redraw_count(); }
     bool wants_mouse() const;         // the pointer is over a panel: the scene should ignore it
     bool wants_keyboard() const;      // a text field has focus
     bool wants_text_input() const;    // a text field is being edited (its cursor blinks)
@@ -30,14 +37,10 @@ public:
 private:
     void platform_new_frame(Window& window, float dt_seconds);
 
-    const VulkanContext& vk_;
     // The mouse cursors the UI asks for (arrow, text beam, resize arrows, hand), and the one shown.
     std::array<GLFWcursor*, 9> cursors_{};  // by ImGuiMouseCursor; null = the arrow
     int shown_cursor_ = -2;
-    // ImGui's colours are sRGB-encoded; the swapchain is *_SRGB and encodes again on write. Each
-    // vertex colour channel goes through this table (sRGB byte -> linear byte) before drawing.
-    std::array<uint8_t, 256> srgb_to_linear_{};
-    Handle<VkDescriptorPool> pool_;
+    std::unique_ptr<ImGuiRenderer> renderer_;
 };
 
 }  // namespace lab

@@ -13,6 +13,12 @@ PipelineBuilder& PipelineBuilder::vertex_attributes(unsigned mask) {
     attributes_ = mask;
     return *this;
 }
+PipelineBuilder& PipelineBuilder::vertex_layout(uint32_t stride,
+                                                const std::vector<VkVertexInputAttributeDescription>& attributes) {
+    custom_stride_ = stride;
+    custom_attributes_ = attributes;
+    return *this;
+}
 PipelineBuilder& PipelineBuilder::descriptor_set(VkDescriptorSetLayout layout) {
     set_layouts_.push_back(layout);
     return *this;
@@ -81,7 +87,8 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
     stages[1].pSpecializationInfo = specialization_;
 
     // Only the attributes the shader reads are declared (unused ones are a validation warning).
-    const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const VkVertexInputBindingDescription binding{0, custom_stride_ ? custom_stride_ : uint32_t(sizeof(Vertex)),
+                                                  VK_VERTEX_INPUT_RATE_VERTEX};
     const VkVertexInputAttributeDescription all[4] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
@@ -90,7 +97,8 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
     };
     std::vector<VkVertexInputAttributeDescription> attributes;
     for (unsigned i = 0; i < 4; ++i)
-        if (attributes_ & (1u << i)) attributes.push_back(all[i]);
+        if (!custom_stride_ && (attributes_ & (1u << i))) attributes.push_back(all[i]);
+    if (custom_stride_) attributes = custom_attributes_;
     VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     vertex_input.vertexBindingDescriptionCount = attributes.empty() ? 0 : 1;
     vertex_input.pVertexBindingDescriptions = &binding;

@@ -26,6 +26,8 @@ public:
     // `fragment` may be VK_NULL_HANDLE: a depth-only pipeline (lab 4's shadow pass).
     PipelineBuilder& shaders(VkShaderModule vertex, VkShaderModule fragment);
     PipelineBuilder& vertex_attributes(unsigned attribute_mask);
+    // A vertex layout other than lab::Vertex (binding 0), e.g. ImGui's ImDrawVert.
+    PipelineBuilder& vertex_layout(uint32_t stride, const std::vector<VkVertexInputAttributeDescription>& attributes);
     PipelineBuilder& descriptor_set(VkDescriptorSetLayout layout);
     PipelineBuilder& push_constants(VkShaderStageFlags stages, uint32_t size);
     PipelineBuilder& cull(VkCullModeFlags mode);
@@ -52,6 +54,8 @@ private:
     VkShaderModule vertex_ = VK_NULL_HANDLE;
     VkShaderModule fragment_ = VK_NULL_HANDLE;
     unsigned attributes_ = kPosition;
+    uint32_t custom_stride_ = 0;  // != 0: custom_attributes_ instead of lab::Vertex
+    std::vector<VkVertexInputAttributeDescription> custom_attributes_;
     std::vector<VkDescriptorSetLayout> set_layouts_;
     std::vector<VkPushConstantRange> push_ranges_;
     VkCullModeFlags cull_ = VK_CULL_MODE_BACK_BIT;

@@ -1,6 +1,7 @@
 #include "shader.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <vector>
@@ -15,9 +16,15 @@ Handle<VkShaderModule> load_shader(const VulkanContext& vk, const std::string& c
     std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     if (bytes.empty() || bytes.size() % 4 != 0) throw VulkanError(path + ": not a SPIR-V file (size is not a multiple of 4)");
 
+    std::vector<uint32_t> code(bytes.size() / 4);  // aligned for pCode
+    std::memcpy(code.data(), bytes.data(), bytes.size());
+    return make_shader_module(vk, code.data(), bytes.size());
+}
+
+Handle<VkShaderModule> make_shader_module(const VulkanContext& vk, const uint32_t* code, size_t size_bytes) {
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = bytes.size();
-    info.pCode = reinterpret_cast<const uint32_t*>(bytes.data());
+    info.codeSize = size_bytes;
+    info.pCode = code;
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(vk.device(), &info, nullptr, &module));
     VkDevice device = vk.device();

@@ -14,4 +14,7 @@ namespace lab {
 // `compiled_dir` is the lab's LAB_SHADER_DIR; `name` e.g. "unlit.vert".
 Handle<VkShaderModule> load_shader(const VulkanContext& vk, const std::string& compiled_dir, const std::string& name);
 
+// A module from SPIR-V already in memory (common's own shaders, compiled into the program).
+Handle<VkShaderModule> make_shader_module(const VulkanContext& vk, const uint32_t* code, size_t size_bytes);
+
 }  // namespace lab

@@ -48,23 +48,17 @@ constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 // Everything else — and synchronization hazards ("SYNC-…") always — fails a --validate run.
 struct FilteredMessage {
     const char* id;
-    bool only_in_library;  // filtered only inside a VulkanContext::LibraryScope
     const char* reason;
 };
 constexpr FilteredMessage kFilteredMessages[] = {
-    {"UNASSIGNED-BestPractices-vkCreateInstance-specialuse-extension-debugging", false,
+    {"UNASSIGNED-BestPractices-vkCreateInstance-specialuse-extension-debugging",
      "VK_EXT_debug_utils and VK_EXT_validation_features are enabled only with --validate, which is debugging"},
-    {"UNASSIGNED-BestPractices-vkAllocateMemory-small-allocation", true,
-     "ImGui 1.86's Vulkan backend (Debian's libimgui-dev) allocates its font image and vertex/index buffers "
-     "one vkAllocateMemory each; the project's own buffers and images are sub-allocated (memory.h)"},
-    {"UNASSIGNED-BestPractices-vkBindMemory-small-dedicated-allocation", true,
-     "the same ImGui backend allocations, seen again when they are bound"},
 };
 
-bool filtered(const char* id, bool in_library) {
+bool filtered(const char* id) {
     if (!id || std::strncmp(id, "SYNC-", 5) == 0) return false;  // hazards are never filtered
     for (const FilteredMessage& f : kFilteredMessages)
-        if (std::strcmp(id, f.id) == 0 && (!f.only_in_library || in_library)) return true;
+        if (std::strcmp(id, f.id) == 0) return true;
     return false;
 }
 
@@ -132,7 +126,7 @@ VkBool32 VulkanContext::on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT 
                                          VkDebugUtilsMessageTypeFlagsEXT,
                                          const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
     auto* context = static_cast<VulkanContext*>(self);
-    if (filtered(data->pMessageIdName, context->library_depth_ > 0)) return VK_FALSE;
+    if (filtered(data->pMessageIdName)) return VK_FALSE;
     context->validation_messages_++;
     if (context->external_count_) ++*context->external_count_;
     const char* level = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";

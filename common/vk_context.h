@@ -57,19 +57,6 @@ public:
     // (kFilteredMessages in vk_context.cpp: each with its reason; synchronization hazards never).
     int validation_messages() const { return validation_messages_; }
 
-    // While one is alive, Vulkan calls come from a library that allocates its own memory (the
-    // ImGui backend): only there are the best-practices allocation-size messages filtered.
-    class LibraryScope {
-    public:
-        explicit LibraryScope(const VulkanContext& vk) : vk_(vk) { ++vk_.library_depth_; }
-        ~LibraryScope() { --vk_.library_depth_; }
-        LibraryScope(const LibraryScope&) = delete;
-        LibraryScope& operator=(const LibraryScope&) = delete;
-
-    private:
-        const VulkanContext& vk_;
-    };
-
 private:
     static VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT type,
@@ -95,7 +82,6 @@ private:
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     bool presenting_ = false;
     int validation_messages_ = 0;
-    mutable int library_depth_ = 0;  // LibraryScopes alive (the debug callback runs in the calling thread)
     int* external_count_ = nullptr;
 };
 

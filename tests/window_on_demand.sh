@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
-# window_on_demand.sh LAB_EXE CLOSE_TOOL — render on demand in a real window (run under xvfb-run).
+# window_on_demand.sh LAB_EXE CLOSE_TOOL PIXELS_TOOL — render on demand in a real window (run under
+# xvfb-run).
 #
 # The lab runs with --validate and LAB_STATUS_FILE ("frame=N ..." after each frame drawn,
 # common/status_file.h). Checks:
 #   1. an idle window stops drawing: at most 2 frames in an idle second;
-#   2. input wakes it: pointer motion draws new frames;
+#   2. input wakes it: pointer motion draws new frames; the UI still reacts although its panels
+#      are drawn from a cache (common/imgui_renderer.h): a hovered checkbox changes, and looks as
+#      before once the pointer leaves;
 #   3. a held key draws continuously (the camera moves every frame), and it idles again after;
 #   4. closing the window ends the run with exit code 0 (no validation message).
 set -euo pipefail
 exe="$1"
 close_tool="$2"
+pixels_tool="$3"
 name="$(basename "$exe")"
 dir="$(mktemp -d)"
 pid=""
@@ -74,6 +78,22 @@ wait_frames_above "$b" 5 || fail "pointer motion drew no frame within 5 s"
 wait_idle
 c=$(frames)
 echo "pointer motion: $((c - b)) frames"
+
+# 2b. Hover: the "continuous rendering" checkbox of the Camera panel (ImGui's default place for
+#     the first panel, 60,60) takes the hover colour, and its plain colour back afterwards.
+checkbox() { "$pixels_tool" "$wid" 70 106 16 16; }
+plain=$(checkbox)
+xdotool mousemove --window "$wid" 77 113
+wait_frames_above "$c" 5 || fail "hovering the checkbox drew no frame within 5 s"
+wait_idle
+hovered=$(checkbox)
+[ "$hovered" != "$plain" ] || fail "the hovered checkbox looks as before: the panel was not redrawn"
+h=$(frames)
+xdotool mousemove --window "$wid" 900 500
+wait_frames_above "$h" 5 || fail "leaving the checkbox drew no frame within 5 s"
+wait_idle
+[ "$(checkbox)" = "$plain" ] || fail "the checkbox did not get its plain look back after the pointer left"
+echo "hover: checkbox $plain -> $hovered -> $(checkbox)"
 
 # 3. A held key (W: forward) draws every frame while held, counted over 2 s from 0.7 s after the
 #    press (the press alone is settled by then: without continuous drawing this counts 0); then
