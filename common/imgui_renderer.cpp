@@ -118,8 +118,9 @@ void append_value(std::vector<uint8_t>& out, const T& value) {
 }
 }  // namespace
 
-// sRGB-encoded 8-bit, like the swapchain: dark premultiplied colours keep their precision.
-// (R16G16B16A16_SFLOAT measured no faster to blend on lavapipe, at twice the memory.)
+// sRGB-encoded 8-bit, like the swapchain: dark premultiplied colours keep their precision. (On
+// lavapipe the blend costs about 40 % of the composite and reading the overlay 60 %, whatever the
+// format: R8G8B8A8_UNORM, R16G16B16A16_UNORM and _SFLOAT measured the same.)
 constexpr VkFormat kOverlayFormat = VK_FORMAT_R8G8B8A8_SRGB;
 
 ImGuiRenderer::ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass)

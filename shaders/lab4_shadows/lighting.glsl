@@ -209,11 +209,11 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
     // END EXERCISE
 }
 
-// Lab 4: the reflectance times the share of the light that reaches P (1 lit, 0 in shadow,
+// Lab 4: att · the reflectance · the share of the light that reaches P (1 lit, 0 in shadow,
 // between: PCF's partial coverage or translucent casters). The map is read only where the
-// light can reflect at all: not on the surfaces facing away from it.
-vec3 lit(Material m, vec3 N, vec3 V, vec3 L, vec3 T, vec4 shadow, vec3 P) {
-    const vec3 r = reflectance(m, N, V, L, T);
+// light can reflect at all: not outside a spot's cone, not on surfaces facing away from it.
+vec3 lit(Material m, vec3 N, vec3 V, vec3 L, vec3 T, float att, vec4 shadow, vec3 P) {
+    const vec3 r = att * reflectance(m, N, V, L, T);
     if (!SHADOWS || r == vec3(0.0)) return r;
     const float s = shadow_factor(int(shadow.x), P, N);
     check(s);
@@ -227,7 +227,7 @@ vec3 shade(Material m, vec3 P, vec3 N, vec3 V, vec3 tangent) {
     const vec3 T = LIGHTING_MODEL == MODEL_WARD ? tangent_frame(N, tangent) : vec3(0.0);
     for (int i = 0; i < DIRECTIONAL_COUNT; ++i) {
         const DirectionalLight light = lights.directional[i];
-        color += light.radiance.rgb * lit(m, N, V, -light.direction.xyz, T, light.shadow, P);
+        color += light.radiance.rgb * lit(m, N, V, -light.direction.xyz, T, 1.0, light.shadow, P);
     }
     for (int i = 0; i < POINT_COUNT; ++i) {
         const PointLight light = lights.point[i];
@@ -236,7 +236,7 @@ vec3 shade(Material m, vec3 P, vec3 N, vec3 V, vec3 tangent) {
         const vec3 L = safe_normalize(to_light, N);  // d = 0: the light is on the surface, L = N
         const float att = attenuation(light.attenuation.xyz, d);
         check(att);
-        color += light.radiance.rgb * att * lit(m, N, V, L, T, light.shadow, P);
+        color += light.radiance.rgb * lit(m, N, V, L, T, att, light.shadow, P);
     }
     for (int i = 0; i < SPOT_COUNT; ++i) {
         const SpotLight light = lights.spot[i];
@@ -245,7 +245,7 @@ vec3 shade(Material m, vec3 P, vec3 N, vec3 V, vec3 tangent) {
         const vec3 L = safe_normalize(to_light, N);
         const float att = attenuation(light.attenuation.xyz, d) * spot_factor(light.cone, dot(-L, light.direction.xyz));
         check(att);
-        color += light.radiance.rgb * att * lit(m, N, V, L, T, light.shadow, P);
+        color += light.radiance.rgb * lit(m, N, V, L, T, att, light.shadow, P);
     }
     check(color);
     return color;

@@ -67,25 +67,30 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     const float ref = ndc.z;  // P's depth as the light sees it
     // Outside the map's coverage nothing was fitted to cast onto it: lit.
     if (!(ref >= 0.0 && ref <= 1.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))) return 1.0;
+    // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
+    // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
+    // around it and weights the results like a linear filter (what a comparison sampler does with
+    // LINEAR; done by hand, as that needs a depth format the device filters: lavapipe has none).
+    // Both read the comparison sampler four texels at a time (textureGather): N taps touch N
+    // (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF costs 4 gathers, not 9 lookups.
+    // A texel's weight per axis: nearest 1 (the padding texel N: 0); bilinear 1 − f, 1, …, 1, f.
     const vec2 size = vec2(textureSize(depth_map, 0));
+    const vec2 texel = filter_mode == 1 ? uv * size - 0.5 : uv * size;
+    const vec2 base = floor(texel) - float(pcf / 2);  // the first texel of the footprint
+    const vec2 f = filter_mode == 1 ? fract(texel) : vec2(0.0);
     float sum = 0.0;
-    for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
-        for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
-            const vec2 t = uv + vec2(x, y) / size;
-            // The map already holds depth + bias (vkCmdSetDepthBias): lit when P is not farther.
-            float lit = ref <= texture(depth_map, t).r ? 1.0 : 0.0;
-            if (filter_mode == 1) {
-                // Bilinear: the comparison sampler compares the four texels around t with ref at
-                // once (textureGather), the results are weighted like a linear filter's. (By hand:
-                // a comparison sampler's LINEAR filter needs a depth format the device filters.)
-                const vec4 c = textureGather(compare_map, t, ref);  // (i0,j1) (i1,j1) (i1,j0) (i0,j0)
-                const vec2 f = fract(t * size - 0.5);
-                lit = mix(mix(c.w, c.z, f.x), mix(c.x, c.y, f.x), f.y);
-            }
-            sum += tap(lit, translucent, translucent ? texture(translucent_map, t).rg : vec2(1.0), ref);
+    for (int by = 0; by <= pcf; by += 2) {
+        for (int bx = 0; bx <= pcf; bx += 2) {
+            // Columns bx, bx + 1 and rows by, by + 1 of the footprint, compared with ref at once.
+            const vec4 c = textureGather(compare_map, (base + vec2(bx, by) + 1.0) / size, ref);  // (0,1) (1,1) (1,0) (0,0)
+            const vec2 w0 = vec2(bx == 0 ? 1.0 - f.x : 1.0, by == 0 ? 1.0 - f.y : 1.0);
+            const vec2 w1 = vec2(bx + 1 == pcf ? f.x : 1.0, by + 1 == pcf ? f.y : 1.0);
+            sum += c.w * w0.x * w0.y + c.z * w1.x * w0.y + c.x * w0.x * w1.y + c.y * w1.x * w1.y;
         }
     }
-    return sum / float(pcf * pcf);
+    // Translucent casters: their transmittance where P projects (once, not per tap; not in full shadow).
+    const float opaque = sum / float(pcf * pcf);
+    return tap(opaque, translucent && opaque > 0.0, translucent && opaque > 0.0 ? texture(translucent_map, uv).rg : vec2(1.0), ref);
 }
 
 // The cube map's depth of P for the face that direction d falls in: that face's axis is d's
