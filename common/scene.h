@@ -40,8 +40,8 @@ struct AmbientDesc {
 struct ShadowDesc {
     enum class Filter { Nearest, Bilinear };  // manual depth compare | comparison sampler (2×2 per tap)
     int resolution = 2048;       // texels per side (per cube face for a point light)
-    int pcf = 3;                 // an N×N kernel, N odd; 1 = a single tap
-    Filter filter = Filter::Bilinear;
+    int pcf = 1;                 // an N×N kernel, N odd; 1 = a single tap
+    Filter filter = Filter::Nearest;
     float bias = 1.0f;           // constant depth bias of the shadow pass (vkCmdSetDepthBias)
     float slope_bias = 1.5f;     // slope-scaled depth bias of the shadow pass
     float normal_offset = 1.0f;  // lookup point moved along the normal, in shadow-map texels

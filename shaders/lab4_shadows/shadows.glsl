@@ -74,6 +74,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // Both read the comparison sampler four texels at a time (textureGather): N taps touch N
     // (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF costs 4 gathers, not 9 lookups.
     // A texel's weight per axis: nearest 1 (the padding texel N: 0); bilinear 1 − f, 1, …, 1, f.
+    if (pcf == 1 && filter_mode == 0)  // a single tap, a single texel: one plain lookup
+        return tap(ref <= texture(depth_map, uv).r ? 1.0 : 0.0, translucent, translucent ? texture(translucent_map, uv).rg : vec2(1.0), ref);
     const vec2 size = vec2(textureSize(depth_map, 0));
     const vec2 texel = filter_mode == 1 ? uv * size - 0.5 : uv * size;
     const vec2 base = floor(texel) - float(pcf / 2);  // the first texel of the footprint
