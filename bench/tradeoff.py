@@ -236,7 +236,7 @@ LAB4_FILTERS = ["nearest", "bilinear"]
 # The seed's configuration (000_...): one 2048^2 map, 3x3 PCF by hand, LearnOpenGL's constant depth
 # bias 0.005, expressed in our keys (lab4_shadows/README.md: 83886 = 0.005 * 2^24 depth units).
 LAB4_SEED = {"resolution": 2048, "pcf": 3, "filter": "nearest", "bias": 83886, "slope_bias": 0, "normal_offset": 0}
-LAB4_DEFAULT = {"resolution": 2048, "pcf": 3, "filter": "bilinear"}  # lab::ShadowDesc's defaults (scene.h)
+LAB4_DEFAULT = {"resolution": 2048, "pcf": 1, "filter": "nearest"}  # lab::ShadowDesc's defaults (scene.h)
 
 
 def lab4_stress_scene():
