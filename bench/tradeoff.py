@@ -7,7 +7,8 @@ For every configuration in the lab's knob table (KNOBS below) the script writes 
 file, runs the lab headless with --benchmark (LP_NUM_THREADS fixed; the same process
 writes its last frame to a PNG) and compares that PNG with the ideal reference
 (`lab_reference --ideal`: exact curved surfaces, per-pixel exact normals; lab 3: the
-supersampled texture, `lab_reference --supersample 16`) using `lab_compare`. Rounds are interleaved (all configurations, then all again, in another
+supersampled texture, `lab_reference --supersample 16`; lab 4: the ray-traced shadows with the shadow
+error metric, `lab_compare --shadow`) using `lab_compare`. Rounds are interleaved (all configurations, then all again, in another
 order) so that load on the shared machine hits every configuration alike.
 
 Two costs per configuration: the wall-clock frame time of --benchmark (median of the
@@ -92,9 +93,15 @@ def set_mesh(scene, mesh, segments, rings):
     return out
 
 
-def truth_of(scene):
-    """What the ideal reference depends on: the scene without tessellation and shading model."""
+def truth_of(scene, lab=""):
+    """What the ideal reference depends on: the scene without tessellation and shading model.
+    Lab 4's truth is the same scene (same meshes, same samplers) with exact shadows: only the
+    lights' shadow-map settings do not matter to it."""
     t = copy.deepcopy(scene)
+    if lab == "lab4_shadows":
+        for light in t.get("lights", []):
+            light.pop("shadow", None)
+        return t
     for obj in t["objects"]:
         obj.pop("segments", None)
         obj.pop("rings", None)
@@ -219,6 +226,63 @@ def lab3_configs(quick):
     return out
 
 
+# Lab 4: shadow-map resolution x PCF kernel x filter, on the default scene and on a hard stress
+# scene, each against the ray-traced shadows (lab_reference --lab lab4_shadows) with the shadow
+# error metric (docs/testing.md): wrong-side pixels outside a band of k = 4 px (the widest kernel
+# compared, 7x7: radius 3 texels + 1) and the MAE over the shadow receivers.
+LAB4_RESOLUTIONS = [512, 1024, 2048, 4096]
+LAB4_KERNELS = [1, 3, 5, 7]
+LAB4_FILTERS = ["nearest", "bilinear"]
+# The seed's configuration (000_...): one 2048^2 map, 3x3 PCF by hand, LearnOpenGL's constant depth
+# bias 0.005, expressed in our keys (lab4_shadows/README.md: 83886 = 0.005 * 2^24 depth units).
+LAB4_SEED = {"resolution": 2048, "pcf": 3, "filter": "nearest", "bias": 83886, "slope_bias": 0, "normal_offset": 0}
+LAB4_DEFAULT = {"resolution": 2048, "pcf": 1, "filter": "nearest"}  # lab::ShadowDesc's defaults (scene.h)
+
+
+def lab4_stress_scene():
+    """tests/scenes/lab4_grazing.json: long, thin shadows at a grazing light: thin posts and a
+    slatted fence on a floor, a directional light 10 degrees above the horizon and a spot light
+    low over the floor."""
+    with open(os.path.join(ROOT, "tests", "scenes", "lab4_grazing.json")) as f:
+        return json.load(f)
+
+
+def with_shadow(scene, settings):
+    """Every shadow-casting light gets exactly `settings` as its "shadow" (other keys: defaults)."""
+    out = copy.deepcopy(scene)
+    for light in out.get("lights", []):
+        if light.get("cast_shadows"):
+            light["shadow"] = dict(settings)
+    return out
+
+
+def lab4_configs(quick):
+    base = load_scene("lab4_shadows.json")
+    base.setdefault("lighting", {})["markers"] = False  # the reference draws no light markers
+    for m in base["materials"].values():
+        for k in ("albedo_map", "specular_map", "emissive_map"):
+            if k in m and not m[k].startswith("procedural:") and not os.path.isabs(m[k]):
+                m[k] = os.path.join(ROOT, "scenes", m[k])
+        if any(k in m for k in ("albedo_map", "specular_map", "emissive_map")):
+            # The reference does not model anisotropic filtering; with it off both sides sample alike,
+            # so the error left is the shadows'.
+            m["sampler"] = dict(m.get("sampler", {}), anisotropy=1)
+    scenes = [("default scene", base), ("grazing stress", lab4_stress_scene())]
+    resolutions = [512, 2048] if quick else LAB4_RESOLUTIONS
+    kernels = [1, 3] if quick else LAB4_KERNELS
+    out = []
+    for group, scene in scenes:
+        for flt in LAB4_FILTERS:
+            for n in kernels:
+                for r in resolutions:
+                    settings = {"resolution": r, "pcf": n, "filter": flt}
+                    out.append(config(f"{r} pcf{n} {flt}", group, with_shadow(scene, settings), knob=r,
+                                      default=settings == LAB4_DEFAULT, series=f"{flt} {n}x{n}"))
+        out.append(config("seed: 2048 pcf3 nearest, bias 0.005", group, with_shadow(scene, LAB4_SEED),
+                          knob=2048, seed="seed 000"))
+    return out
+
+
 KNOBS = {
     "lab1_camera": {"configs": lab1_configs, "groups": {"tessellation": {"front": True}}},
     "lab2_lighting": {"configs": lab2_configs,
@@ -229,7 +293,17 @@ KNOBS = {
     "lab3_textures": {"configs": lab3_configs, "groups": {"sampler": {"front": True, "label_all": True}},
                       "truth": ["--supersample", "16"], "truth_name": "16x16 supersampled",
                       "order": [("trilinear", "nearest")]},
+    # error: the figure the front and the plot use (default mean_abs); compare: lab_compare's extra options.
+    "lab4_shadows": {"configs": lab4_configs,
+                     "groups": {"default scene": {"front": True}, "grazing stress": {"front": True}},
+                     "truth": "shadow", "truth_name": "ray-traced shadows", "error": "shadow_mae",
+                     "error_label": "shadow MAE over the receivers vs ray-traced shadows (1/255)",
+                     "band": 4, "time_env": {"LAB_ANIMATE_LIGHTS": "1"}, "size": (640, 360), "frames": 16},
 }
+# The lab 4 shadow metric's figures (lab_compare --shadow), in every CSV (empty for other labs).
+SHADOW_KEYS = ["wrong_side_pct", "shadow_mae"]
+CSV_FIELDS = CSV_FIELDS[:-2] + SHADOW_KEYS + CSV_FIELDS[-2:]
+ERROR = {"key": "mean_abs"}  # set from the lab's knob table in main()
 
 
 # ---------------------------------------------------------------------------
@@ -262,7 +336,7 @@ def parse_fields(text, prefix):
 class Sweep:
     def __init__(self, lab, args):
         self.lab, self.args = lab, args
-        self.exe = os.path.join(args.build, lab, lab)
+        self.exe = args.exe or os.path.join(args.build, lab, lab)
         self.reference = os.path.join(args.build, "tests", "lab_reference")
         self.compare = os.path.join(args.build, "tests", "lab_compare")
         for path in (self.exe, self.reference, self.compare):
@@ -279,46 +353,56 @@ class Sweep:
         return path
 
     def truth(self, scene, w, h, supersample=1):
-        """The ideal reference PNG of a scene (rendered once per distinct truth)."""
-        t = truth_of(scene)
+        """The ideal reference PNG of a scene (rendered once per distinct truth). Lab 4: the
+        ray-traced shadows, plus the unoccluded and unlit pictures the shadow metric needs
+        (PATH.u.png, PATH.z.png)."""
+        t = truth_of(scene, self.lab)
         key = hashlib.sha1((json.dumps(t, sort_keys=True) + f"{w}x{h}s{supersample}").encode()).hexdigest()[:12]
         if key not in self.truths:
             path = os.path.join(self.tmp, f"truth_{key}.png")
             truth_args = KNOBS[self.lab].get("truth", ["--ideal", "--supersample", str(supersample)])
+            if truth_args == "shadow":
+                truth_args = ["--unshadowed", path[:-4] + ".u.png", "--unlit", path[:-4] + ".z.png"]
             out = run([self.reference, "--lab", self.lab, "--scene", self.write_scene(t, "truth_" + key),
                        "--width", str(w), "--height", str(h)] + truth_args + ["--out", path])
             self.truths[key] = path
             print(f"  truth {key}: {parse_fields(out, 'reference')['ms']} ms", flush=True)
         return self.truths[key]
 
-    def render(self, scene_path, w, h, frames, png=None, cpu=None):
+    def render(self, scene_path, w, h, frames, png=None, cpu=None, extra_env=None):
         cmd = [self.exe, "--scene", scene_path, "--width", str(w), "--height", str(h), "--benchmark", str(frames)]
         if png:
             cmd += ["--out", png]
         if self.args.quick:
             cmd.append("--validate")  # quick runs are tests: validation on, timing not judged
-        return parse_fields(run(cmd, self.env, cpu), "benchmark")
+        return parse_fields(run(cmd, dict(self.env, **(extra_env or {})), cpu), "benchmark")
 
-    def frame_cpu_ms(self, scene_path, w, h, frames, png=None):
+    def frame_cpu_ms(self, scene_path, w, h, frames, png=None, extra_env=None):
         """--benchmark `frames` (wall-clock figures) and the CPU time one frame costs: the CPU
         seconds of that run minus those of a 1-frame run (start-up, pipeline compilation, warm-up
         are the same in both), over the frames between them. Other users of the machine delay a
         frame (wall clock) but hardly change its CPU time."""
         cpu = []
-        self.render(scene_path, w, h, 1, None, cpu)
-        b = self.render(scene_path, w, h, frames, png, cpu)
+        self.render(scene_path, w, h, 1, None, cpu, extra_env)
+        b = self.render(scene_path, w, h, frames, png, cpu, extra_env)
         b["cpu_ms"] = max(0.0, (cpu[1] - cpu[0]) / (frames - 1) * 1000.0)
         return b
 
     def compare_png(self, truth, png, heatmap=None):
         cmd = [self.compare, truth, png] + (["--heatmap", heatmap] if heatmap else [])
+        if KNOBS[self.lab].get("truth") == "shadow":
+            cmd += ["--shadow", truth[:-4] + ".u.png", truth[:-4] + ".z.png", "--band", str(KNOBS[self.lab]["band"])]
         return parse_fields(run(cmd), "mean_abs")
 
 
 def measure(lab, args):
     sweep = Sweep(lab, args)
-    w, h = (320, 180) if args.quick else (1280, 720)
+    w, h = (320, 180) if args.quick else KNOBS[lab].get("size", (1280, 720))
     configs = KNOBS[lab]["configs"](args.quick)
+    if args.group:
+        configs = [c for c in configs if c["group"] == args.group]
+    if args.only:
+        configs = [c for c in configs if re.search(args.only, c["config"])]
     for i, c in enumerate(configs):
         c["scene_path"] = sweep.write_scene(c["scene"], f"config_{i}")
         c["times"], c["p95s"] = [], []
@@ -333,15 +417,26 @@ def measure(lab, args):
             c = configs[i]
             png = os.path.join(sweep.tmp, f"config_{i}.png") if r == 0 else None
             frames = max(3, args.frames // c.get("slow", 1))
-            b = sweep.frame_cpu_ms(c["scene_path"], w, h, frames, png)
+            time_env = KNOBS[lab].get("time_env")
+            if time_env:
+                # Lab 4: the picture of the static scene gives the error; the time is a frame that
+                # re-renders every shadow map (LAB_ANIMATE_LIGHTS=1: what the map's resolution costs; a
+                # static scene pays it once). A static 1-frame run does the same work as an animated
+                # one (the first frame renders every map), so it serves as the CPU baseline too.
+                cpu = []
+                sweep.render(c["scene_path"], w, h, 1, png or os.path.join(sweep.tmp, "unused.png"), cpu)
+                b = sweep.render(c["scene_path"], w, h, frames, None, cpu, time_env)
+                b["cpu_ms"] = max(0.0, (cpu[1] - cpu[0]) / (frames - 1) * 1000.0)
+            else:
+                b = sweep.frame_cpu_ms(c["scene_path"], w, h, frames, png)
             c.setdefault("cpu", []).append(b["cpu_ms"])
             c["times"].append(float(b["median_ms"]))
             c["p95s"].append(float(b["p95_ms"]))
             if png:
                 e = sweep.compare_png(sweep.truth(c["scene"], w, h), png)
-                c["errors"] = {k: float(e[k].rstrip("%")) for k in ERROR_KEYS}
+                c["errors"] = {k: float(e[k].rstrip("%")) for k in ERROR_KEYS + SHADOW_KEYS if k in e}
             print(f"  round {r + 1}/{args.rounds} {c['group']:>22} | {c['config']:<18} "
-                  f"cpu {c['cpu'][-1]:8.2f} ms  wall {c['times'][-1]:8.2f} ms  mean_abs {c['errors']['mean_abs']:.4f}",
+                  f"cpu {c['cpu'][-1]:8.2f} ms  wall {c['times'][-1]:8.2f} ms  {ERROR['key']} {err(c):.4f}",
                   flush=True)
     for c in configs:
         c["median_ms"] = statistics.median(c["times"])
@@ -365,8 +460,8 @@ def mark_front(configs, groups):
         if not groups.get(c["group"], {}).get("front"):
             continue
         peers = [o for o in configs if o["group"] == c["group"] and o is not c]
-        err = c["errors"]["mean_abs"]
-        strict = [o for o in peers if o["cpu_ms"] < c["cpu_ms"] and o["errors"]["mean_abs"] < err]
+        e = err(c)
+        strict = [o for o in peers if o["cpu_ms"] < c["cpu_ms"] and err(o) < e]
         robust = [o for o in strict if o["cpu_ms"] + max(o["cpu_spread_ms"], c["cpu_spread_ms"]) < c["cpu_ms"]]
         c["on_front"] = "yes" if not strict else "no"
         c["dominated_by"] = ";".join(o["config"] for o in robust)
@@ -384,7 +479,7 @@ def write_csv(lab, configs, path, rounds):
                    "cpu_ms": f"{c['cpu_ms']:.3f}", "cpu_spread_ms": f"{c['cpu_spread_ms']:.3f}", "rounds": rounds,
                    "round_ms": ";".join(f"{t:.2f}" for t in c["times"]),
                    "on_front": c["on_front"], "dominated_by": c["dominated_by"]}
-            row.update({k: f"{c['errors'][k]:.4f}" for k in ERROR_KEYS})
+            row.update({k: f"{c['errors'][k]:.4f}" if k in c["errors"] else "" for k in ERROR_KEYS + SHADOW_KEYS})
             wr.writerow(row)
 
 
@@ -432,7 +527,8 @@ def plot(lab, configs, path, title_note):
 
 
 def err(c):
-    return c["errors"]["mean_abs"]
+    """The error the front and the plots use: mean |error| (lab 4: the wrong-side share)."""
+    return c["errors"][ERROR["key"]]
 
 
 def plot_front(ax, group, cs, kind):
@@ -445,8 +541,11 @@ def plot_front(ax, group, cs, kind):
             ax.plot([c["cpu_ms"] for c in pts], [err(c) for c in pts], marker=markers.get(s, "o"), linestyle="-",
                     alpha=0.8, label=f"{s} (segments)" if s == "all" else s)
         else:
+            label = "one primitive varied, others at default" if kind != "labelled" else "configuration"
+            if all(c["seed"] for c in pts):
+                label = "the seed's configuration"
             ax.scatter([c["cpu_ms"] for c in pts], [err(c) for c in pts], marker="x", color="0.3", zorder=3,
-                       label="one primitive varied, others at default" if kind != "labelled" else "configuration")
+                       label=label)
     front = sorted([c for c in cs if c["on_front"] == "yes"], key=lambda c: c["cpu_ms"])
     ax.step([c["cpu_ms"] for c in front], [err(c) for c in front], where="post", color="black", linewidth=1.2,
             alpha=0.7, label="Pareto front")
@@ -483,7 +582,7 @@ def plot_front(ax, group, cs, kind):
     else:
         ax.set_title(group)
     ax.set_xlabel("CPU time per frame (ms, all threads, log)")
-    ax.set_ylabel("mean |error| vs ideal (1/255, log)")
+    ax.set_ylabel(ERROR.get("label", "mean |error| vs ideal (1/255, log)"))
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="upper right")
 
@@ -557,10 +656,11 @@ def replot(lab, csv_path, out_png, quick):
             c["group"] = row["group"]
             for k in ("median_ms", "p95_ms", "spread_ms", "best_ms", "cpu_ms", "cpu_spread_ms"):
                 c[k] = float(row[k])
-            c["errors"] = {k: float(row[k]) for k in ERROR_KEYS}
+            c["errors"] = {k: float(row[k]) for k in ERROR_KEYS + SHADOW_KEYS if row.get(k)}
             c["on_front"], c["dominated_by"] = row["on_front"], row["dominated_by"]
             c["rounds"] = row["rounds"]
             out.append(c)
+    mark_front(out, KNOBS[lab]["groups"])  # with the lab's error figure (several CSVs may have been joined)
     return out
 
 
@@ -690,22 +790,41 @@ def main():
     ap.add_argument("--threads", type=int, default=2, help="LP_NUM_THREADS (default 2)")
     ap.add_argument("--no-heatmaps", action="store_true")
     ap.add_argument("--replot", action="store_true", help="only draw LAB.png again from LAB.csv")
+    ap.add_argument("--exe", help="the lab binary (default: BUILD/LAB/LAB)")
+    ap.add_argument("--only", help="only the configurations whose name matches this regular expression")
+    ap.add_argument("--group", help="only this group's configurations (e.g. two groups in two processes, "
+                                    "then --replot on the concatenated CSV)")
     args = ap.parse_args()
     args.build = os.path.abspath(args.build)
+    ERROR["key"] = KNOBS[args.lab].get("error", "mean_abs")
+    if "error_label" in KNOBS[args.lab]:
+        ERROR["label"] = KNOBS[args.lab]["error_label"] + " (log)"
     if args.frames is None:
-        args.frames = 3 if args.quick else (61 if args.lab == "lab1_camera" else 21)
+        args.frames = 3 if args.quick else KNOBS[args.lab].get("frames", 61 if args.lab == "lab1_camera" else 21)
     if args.rounds is None:
         args.rounds = 1 if args.quick else 3
     out_dir = args.out_dir or (os.path.join(args.build, "tradeoff_quick") if args.quick
                                else os.path.join(ROOT, "docs", "tradeoffs"))
     os.makedirs(out_dir, exist_ok=True)
 
-    res = "320x180" if args.quick else "1280x720"
+    res = "320x180" if args.quick else "x".join(map(str, KNOBS[args.lab].get("size", (1280, 720))))
     note = (f"{res}, LP_NUM_THREADS={args.threads}, {args.rounds} interleaved rounds x {args.frames} frames on a "
             f"shared 2-core machine; bars: round-to-round spread")
+    if KNOBS[args.lab].get("time_env"):
+        note += "; time: a frame that re-renders every shadow map (LAB_ANIMATE_LIGHTS=1), error: the static picture"
     if args.replot:
         csv_path = os.path.join(out_dir, args.lab + ".csv")
-        plot(args.lab, replot(args.lab, csv_path, None, args.quick), os.path.join(out_dir, args.lab + ".png"), note)
+        configs = replot(args.lab, csv_path, None, args.quick)
+        # The front columns again, from the recomputed front.
+        with open(csv_path, newline="") as f:
+            rows = list(csv.DictReader(f))
+        for row, c in zip(rows, configs):
+            row["on_front"], row["dominated_by"] = c["on_front"], c["dominated_by"]
+        with open(csv_path, "w", newline="") as f:
+            wr = csv.DictWriter(f, fieldnames=CSV_FIELDS)
+            wr.writeheader()
+            wr.writerows(rows)
+        plot(args.lab, configs, os.path.join(out_dir, args.lab + ".png"), note)
         return
     wall = time.time()
     configs, sweep, _ = measure(args.lab, args)
@@ -719,7 +838,7 @@ def main():
         if c["default"]:
             print(f"  default {c['group']} | {c['config']}: cpu {c['cpu_ms']:.2f} ms/frame (spread {c['cpu_spread_ms']:.2f}), "
                   f"wall median {c['median_ms']:.2f} ms (spread {c['spread_ms']:.2f}, best {c['best_ms']:.2f}), "
-                  f"mean_abs {c['errors']['mean_abs']:.4f}, on front: {c['on_front'] or 'n/a'}"
+                  f"{ERROR['key']} {err(c):.4f}, on front: {c['on_front'] or 'n/a'}"
                   + (f", dominated beyond noise by {c['dominated_by']}" if c["dominated_by"] else ""))
     shutil.rmtree(sweep.tmp, ignore_errors=True)
     if args.quick and not check(args.lab, csv_path, configs):

@@ -151,7 +151,8 @@ glm::dmat3 normal_matrix(const glm::dmat4& model) {
 }
 
 glm::dvec3 shade_point(const lab::Scene& scene, const lab::MaterialDesc& m, const glm::dvec3& P,
-                       const glm::dvec3& N, const glm::dvec3& V, const glm::dvec3& tangent, bool* bad) {
+                       const glm::dvec3& N, const glm::dvec3& V, const glm::dvec3& tangent, bool* bad,
+                       const LightVisibility* visibility) {
     Frame f{N, V, glm::dvec3(0.0)};
     if (scene.lighting.model == Model::Ward) {
         const glm::dvec3 any = glm::normalize(
@@ -166,8 +167,14 @@ glm::dvec3 shade_point(const lab::Scene& scene, const lab::MaterialDesc& m, cons
         if (used[int(light.type)]++ >= limit[int(light.type)]) continue;  // the lab drops extra lights too
         const glm::dvec3 radiance = glm::dvec3(light.color) * double(light.intensity);
         const glm::dvec3 axis = unit_or(glm::dvec3(light.direction), glm::dvec3(0, -1, 0));
+        // Lab 4: a shadow-casting light is scaled by the fraction that reaches the point (traced
+        // only where it would add something).
+        const auto shadowed = [&](const glm::dvec3& r, double factor = 1.0) {
+            if (!visibility || !light.cast_shadows || r == glm::dvec3(0.0) || factor == 0.0) return r;
+            return r * (*visibility)(light);
+        };
         if (light.type == Type::Directional) {
-            color += radiance * reflectance(scene, m, f, -axis, bad);
+            color += radiance * shadowed(reflectance(scene, m, f, -axis, bad));
             continue;
         }
         const glm::dvec3 to_light = glm::dvec3(light.position) - P;
@@ -176,7 +183,7 @@ glm::dvec3 shade_point(const lab::Scene& scene, const lab::MaterialDesc& m, cons
         double factor = attenuation(glm::dvec3(light.attenuation), d);
         if (light.type == Type::Spot)
             factor *= spot_factor(light.inner_deg, light.outer_deg, scene.lighting.spot_falloff, glm::dot(-L, axis));
-        color += radiance * factor * reflectance(scene, m, f, L, bad);
+        color += radiance * factor * shadowed(reflectance(scene, m, f, L, bad), factor);
     }
     if (bad && !finite(color)) *bad = true;
     return color;

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include <functional>
 #include <memory>
 
 namespace ref {
@@ -35,8 +36,12 @@ glm::dmat3 normal_matrix(const glm::dmat4& model);
 // The equation at one surface point: emissive + ambient·albedo + Σ radiance·reflectance.
 // N and V unit; tangent = the interpolated world tangent (only Ward uses it). Sets *bad when an
 // intermediate is NaN or infinite (it never should be).
+// Lab 4: `visibility`, if given, is called for every light with cast_shadows that reaches the point
+// (reflectance > 0) and returns the fraction of its light that arrives (cpu_shadow.h).
+using LightVisibility = std::function<double(const lab::LightDesc& light)>;
 glm::dvec3 shade_point(const lab::Scene& scene, const lab::MaterialDesc& material, const glm::dvec3& P,
-                       const glm::dvec3& N, const glm::dvec3& V, const glm::dvec3& tangent, bool* bad = nullptr);
+                       const glm::dvec3& N, const glm::dvec3& V, const glm::dvec3& tangent, bool* bad = nullptr,
+                       const LightVisibility* visibility = nullptr);
 
 // A ShadeFn for the scene's lighting model and shading model (scene.lighting). It keeps
 // the scene's meshes for vertex normals and tangents; it is safe to call from many threads.

@@ -321,6 +321,7 @@ struct SceneGeometry::Impl {
     std::vector<glm::dmat3> normal_matrices;
 
     void build(int node, int first, int count, int depth);
+    void fill_hit(const Triangle& tri, const TriangleHit& h, bool front, Hit* out) const;
 };
 
 void SceneGeometry::Impl::build(int node, int first, int count, int depth) {
@@ -405,15 +406,91 @@ SceneGeometry::SceneGeometry(const lab::Scene& scene) : impl_(new Impl) {
 
 SceneGeometry::~SceneGeometry() { delete impl_; }
 
+void SceneGeometry::Impl::fill_hit(const Triangle& tri, const TriangleHit& h, bool front, Hit* out) const {
+    const double b0 = 1.0 - h.b1 - h.b2;
+    const lab::Mesh& mesh = meshes[tri.object_id];
+    const lab::Vertex& p0 = mesh.vertices[tri.vertex_index[0]];
+    const lab::Vertex& p1 = mesh.vertices[tri.vertex_index[1]];
+    const lab::Vertex& p2 = mesh.vertices[tri.vertex_index[2]];
+
+    out->hit = true;
+    out->back_face = !front;
+    out->object_id = tri.object_id;
+    out->triangle_id = tri.triangle_id;
+    out->depth = h.t;
+    out->position = b0 * tri.v0 + h.b1 * tri.v1 + h.b2 * tri.v2;
+    const glm::dvec3 n_model = b0 * glm::dvec3(p0.normal) + h.b1 * glm::dvec3(p1.normal) + h.b2 * glm::dvec3(p2.normal);
+    const glm::dvec3 n_world = normal_matrices[tri.object_id] * n_model;
+    out->normal = glm::length(n_world) > 0.0 ? glm::normalize(n_world) : glm::dvec3(0.0);
+    out->geometric_normal = glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+    out->uv = b0 * glm::dvec2(p0.uv) + h.b1 * glm::dvec2(p1.uv) + h.b2 * glm::dvec2(p2.uv);
+}
+
+Hit SceneGeometry::hit_of(const CrossedTriangle& c) const {
+    Hit hit;
+    TriangleHit h;
+    h.t = c.t;
+    h.b1 = c.b1;
+    h.b2 = c.b2;
+    impl_->fill_hit(impl_->triangles.at(size_t(c.index)), h, c.front, &hit);
+    return hit;
+}
+
 size_t SceneGeometry::triangle_count() const { return impl_->triangles.size(); }
 
-bool SceneGeometry::trace(const Ray& ray, double t_min, double t_max, Hit* out) const {
+namespace {
+// intersect_triangle() on the side(s) `facing` allows; *front tells which side was hit. The back
+// side is the front side of the reversed triangle (v0, v2, v1), so b1 and b2 swap back.
+bool intersect_facing(const Ray& ray, const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2, double t_min,
+                      double t_max, Facing facing, TriangleHit* hit, bool* front) {
+    if (facing != Facing::Back && intersect_triangle(ray, v0, v1, v2, t_min, t_max, hit)) {
+        *front = true;
+        return true;
+    }
+    if (facing != Facing::Front && intersect_triangle(ray, v0, v2, v1, t_min, t_max, hit)) {
+        std::swap(hit->b1, hit->b2);
+        *front = false;
+        return true;
+    }
+    return false;
+}
+}  // namespace
+
+bool SceneGeometry::for_each_hit(const Ray& ray, double t_min, double t_max,
+                                 const std::function<bool(const CrossedTriangle&)>& visit) const {
+    const Impl& g = *impl_;
+    if (g.triangles.empty()) return true;
+    const glm::dvec3 inv_dir(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z);
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = g.nodes[stack[--top]];
+        if (!ray_box(ray, inv_dir, node.box, t_min, t_max)) continue;
+        if (node.count == 0) {
+            stack[top++] = node.first;
+            stack[top++] = node.first + 1;
+            continue;
+        }
+        for (int i = node.first; i < node.first + node.count; ++i) {
+            const Triangle& tri = g.triangles[i];
+            TriangleHit h;
+            bool front = true;
+            if (!intersect_facing(ray, tri.v0, tri.v1, tri.v2, t_min, t_max, Facing::Both, &h, &front)) continue;
+            if (!visit(CrossedTriangle{h.t, tri.object_id, tri.triangle_id, front, h.b1, h.b2, i})) return false;
+        }
+    }
+    return true;
+}
+
+bool SceneGeometry::trace(const Ray& ray, double t_min, double t_max, Hit* out, Facing facing) const {
     const Impl& g = *impl_;
     if (g.triangles.empty()) return false;
     const glm::dvec3 inv_dir(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z);
 
     const Triangle* best = nullptr;
     TriangleHit best_hit;
+    bool best_front = true;
     double best_t = t_max;
     int stack[128];
     int top = 0;
@@ -429,7 +506,8 @@ bool SceneGeometry::trace(const Ray& ray, double t_min, double t_max, Hit* out) 
         for (int i = node.first; i < node.first + node.count; ++i) {
             const Triangle& tri = g.triangles[i];
             TriangleHit h;
-            if (!intersect_triangle(ray, tri.v0, tri.v1, tri.v2, t_min, best_t, &h)) continue;
+            bool front = true;
+            if (!intersect_facing(ray, tri.v0, tri.v1, tri.v2, t_min, best_t, facing, &h, &front)) continue;
             // Ties (a ray exactly through a shared edge, or coplanar overlap) go
             // to the lower (object, triangle) so the result never depends on BVH order.
             if (best && h.t == best_t &&
@@ -438,32 +516,13 @@ bool SceneGeometry::trace(const Ray& ray, double t_min, double t_max, Hit* out) 
                 continue;
             best = &tri;
             best_hit = h;
+            best_front = front;
             best_t = h.t;
         }
     }
     if (!best) return false;
 
-    if (out) {
-        const double b0 = 1.0 - best_hit.b1 - best_hit.b2;
-        const lab::Mesh& mesh = g.meshes[best->object_id];
-        const lab::Vertex& p0 = mesh.vertices[best->vertex_index[0]];
-        const lab::Vertex& p1 = mesh.vertices[best->vertex_index[1]];
-        const lab::Vertex& p2 = mesh.vertices[best->vertex_index[2]];
-
-        out->hit = true;
-        out->object_id = best->object_id;
-        out->triangle_id = best->triangle_id;
-        out->depth = best_t;
-        out->position = b0 * best->v0 + best_hit.b1 * best->v1 + best_hit.b2 * best->v2;
-        const glm::dvec3 n_model = b0 * glm::dvec3(p0.normal) + best_hit.b1 * glm::dvec3(p1.normal) +
-                                   best_hit.b2 * glm::dvec3(p2.normal);
-        const glm::dvec3 n_world = g.normal_matrices[best->object_id] * n_model;
-        out->normal = glm::length(n_world) > 0.0 ? glm::normalize(n_world) : glm::dvec3(0.0);
-        out->geometric_normal =
-            glm::normalize(glm::cross(best->v1 - best->v0, best->v2 - best->v0));
-        out->uv = b0 * glm::dvec2(p0.uv) + best_hit.b1 * glm::dvec2(p1.uv) +
-                  best_hit.b2 * glm::dvec2(p2.uv);
-    }
+    if (out) g.fill_hit(*best, best_hit, best_front, out);
     return true;
 }
 

@@ -130,6 +130,23 @@ struct Hit {
     // along +u, and triangle_id names the part (0 side, 1 top cap, 2 bottom cap), not a triangle.
     bool analytic = false;
     glm::dvec3 tangent{0.0};
+    // Lab 4: the ray crossed the triangle from its back side (SceneGeometry::trace with
+    // Facing::Back or Both). `geometric_normal` and `normal` still point to the front side.
+    bool back_face = false;
+};
+
+// Which sides of a triangle a ray may hit: the rasteriser's culled view (Front), or both, for
+// lab 4's translucent layers and shadow rays.
+enum class Facing { Front, Back, Both };
+
+// One triangle a ray crosses (SceneGeometry::for_each_hit).
+struct CrossedTriangle {
+    double t = 0.0;
+    int object_id = -1;
+    int triangle_id = -1;
+    bool front = true;  // crossed from the front side (counter-clockwise as seen from the ray origin)
+    double b1 = 0.0, b2 = 0.0;  // barycentric weights of the (unreversed) triangle's v1, v2
+    int index = -1;             // SceneGeometry's own triangle number (for hit_of)
 };
 
 // Turns a hit (or a miss: hit.hit == false) into a linear RGB colour.
@@ -160,7 +177,15 @@ public:
 
     // Nearest front-facing hit with t in [t_min, t_max]; fills everything in
     // Hit except `material` and `view_dir` when found.
-    bool trace(const Ray& ray, double t_min, double t_max, Hit* hit) const;
+    bool trace(const Ray& ray, double t_min, double t_max, Hit* hit, Facing facing = Facing::Front) const;
+
+    // Calls visit() for every triangle the ray crosses with t in [t_min, t_max], either side, in
+    // no particular order; stops early when visit() returns false. Returns false if it stopped.
+    bool for_each_hit(const Ray& ray, double t_min, double t_max,
+                      const std::function<bool(const CrossedTriangle&)>& visit) const;
+
+    // The full hit record of a crossing for_each_hit reported (like trace fills it).
+    Hit hit_of(const CrossedTriangle& crossing) const;
 
     size_t triangle_count() const;
 

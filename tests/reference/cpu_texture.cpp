@@ -1,6 +1,8 @@
 // cpu_texture.cpp — see cpu_texture.h. Double precision throughout.
 #include "reference/cpu_texture.h"
 
+#include "reference/cpu_shadow.h"
+
 #include "reference/cpu_lighting.h"
 
 #include <algorithm>
@@ -306,10 +308,10 @@ std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int wi
 }
 
 ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0,
-                            const SamplingVariant& variant) {
+                            const SamplingVariant& variant, std::shared_ptr<const ShadowCasters> shadows) {
     const std::shared_ptr<TexturedScene> data = textured_scene(scene, width, height, supersample_level0);
     const lab::LightingDesc::Shading shading_model = scene.lighting.shading;
-    return [data, shading_model, variant](const lab::Scene& s, const Hit& hit) -> glm::dvec3 {
+    return [data, shading_model, variant, shadows](const lab::Scene& s, const Hit& hit) -> glm::dvec3 {
         if (!hit.hit) return glm::dvec3(s.background);
         const lab::MaterialDesc& m = s.materials.at(hit.material);
         const glm::dvec3 N = shading_model == lab::LightingDesc::Shading::Flat || glm::dot(hit.normal, hit.normal) == 0.0
@@ -320,7 +322,12 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
         const Triangle tri = triangle_of(*data, hit);
         glm::dvec3 tangent(0.0);
         for (int k = 0; k < 3; ++k) tangent += tri.w[k] * tri.tangent[k];
-        if (!m.has_maps()) return shade_point(s, m, hit.position, N, V, tangent);
+        // Lab 4: the light of shadow-casting lights that reaches the hit.
+        const LightVisibility visible = [&](const lab::LightDesc& light) {
+            return shadows->transmittance(light, hit.position, hit.geometric_normal);
+        };
+        const LightVisibility* visibility = shadows ? &visible : nullptr;
+        if (!m.has_maps()) return shade_point(s, m, hit.position, N, V, tangent, nullptr, visibility);
 
         glm::dvec2 dx(0.0), dy(0.0);
         glm::dvec3 dpx(0.0), dpy(0.0);
@@ -362,7 +369,7 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
         if (!m.emissive_map.empty())
             textured.emissive = glm::vec3(glm::dvec3(m.emissive) +
                                           double(m.emissive_strength) * lookup(m.emissive_map, uv, dx, dy));
-        return shade_point(s, textured, hit.position, N, V, tangent);
+        return shade_point(s, textured, hit.position, N, V, tangent, nullptr, visibility);
     };
 }
 

@@ -80,8 +80,11 @@ glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::
 // "distorted". The UV derivatives come from ray differentials of a width × height image.
 // With `supersample_level0` every lookup is bilinear on level 0 (for render_supersampled).
 // `variant`: every lookup of the shader done that way (tests/test_lab3_render.cpp's envelope).
+// Lab 4: with `shadows`, every light with cast_shadows is scaled by shadows->transmittance() at the
+// hit (cpu_shadow.h); the hit's geometric_normal must point to the shaded side.
+class ShadowCasters;
 ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0 = false,
-                            const SamplingVariant& variant = {});
+                            const SamplingVariant& variant = {}, std::shared_ptr<const ShadowCasters> shadows = nullptr);
 
 // The LOD λ of the first map's lookup (albedo, else specular, else emissive) at a hit, from the
 // same ray differentials; −1e9 for misses and materials without maps. λ ≤ 0: magnified.

@@ -356,4 +356,121 @@ lab::Image8 error_heatmap(const lab::Image8& a, const lab::Image8& b, const std:
     return out;
 }
 
+// ---------------------------------------------------------------------------
+// Lab 4: the shadow error metric
+// ---------------------------------------------------------------------------
+
+double lit_fraction(const uint8_t x[3], const uint8_t u[3], const uint8_t z[3]) {
+    double num = 0.0, den = 0.0;
+    for (int ch = 0; ch < 3; ++ch) {
+        const double span = double(u[ch]) - double(z[ch]);
+        num += (double(x[ch]) - double(z[ch])) * span;
+        den += span * span;
+    }
+    return den > 0.0 ? num / den : 1.0;
+}
+
+namespace {
+void require_same_size(const lab::Image8& a, const lab::Image8& b, const char* what) {
+    if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+        throw std::invalid_argument(std::string("shadow_metric: ") + what + " is " + std::to_string(b.width) + "x" +
+                                    std::to_string(b.height) + ", the reference " + std::to_string(a.width) + "x" +
+                                    std::to_string(a.height));
+}
+
+// 1 where the Chebyshev distance to a set pixel is ≤ k (a (2k+1)² max filter, done separably).
+std::vector<uint8_t> dilate(const std::vector<uint8_t>& in, int w, int h, int k) {
+    std::vector<uint8_t> rows(in.size(), 0), out(in.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!in[size_t(y) * w + x]) continue;
+            for (int dx = std::max(0, x - k); dx <= std::min(w - 1, x + k); ++dx) rows[size_t(y) * w + dx] = 1;
+        }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!rows[size_t(y) * w + x]) continue;
+            for (int dy = std::max(0, y - k); dy <= std::min(h - 1, y + k); ++dy) out[size_t(dy) * w + x] = 1;
+        }
+    return out;
+}
+}  // namespace
+
+std::string ShadowMetric::line() const {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "wrong_side=%zu wrong_side_pct=%.4f shadow_mae=%.4f receivers=%zu banded=%zu band_k=%d",
+                  wrong_side, 100.0 * wrong_side_share, mae, receivers, banded, band_k);
+    return buf;
+}
+
+ShadowMetric shadow_metric(const lab::Image8& actual, const lab::Image8& shadowed, const lab::Image8& unshadowed,
+                           const lab::Image8& unlit, const ShadowMetricOptions& options) {
+    require_same_size(shadowed, actual, "the picture");
+    require_same_size(shadowed, unshadowed, "the unshadowed reference");
+    require_same_size(shadowed, unlit, "the unlit reference");
+    if (options.band < 0) throw std::invalid_argument("shadow_metric: negative band");
+    const int w = shadowed.width, h = shadowed.height;
+    const size_t total = size_t(w) * size_t(h);
+    ShadowMetric m;
+    m.width = w;
+    m.height = h;
+    m.band_k = options.band;
+    m.state.assign(total, 0);
+    std::vector<uint8_t> actual_state(total, 0);
+    for (size_t i = 0; i < total; ++i) {
+        const uint8_t* u = &unshadowed.rgba[4 * i];
+        const uint8_t* z = &unlit.rgba[4 * i];
+        if (pixel_diff(u, z) < options.min_contrast) continue;
+        m.state[i] = lit_fraction(&shadowed.rgba[4 * i], u, z) >= 0.5 ? 1 : 2;
+        actual_state[i] = lit_fraction(&actual.rgba[4 * i], u, z) >= 0.5 ? 1 : 2;
+    }
+    // The band: p is in it when some pixel within Chebyshev distance k has another S-state.
+    m.band.assign(total, 0);
+    for (uint8_t value = 0; value < 3; ++value) {
+        std::vector<uint8_t> has(total, 0);
+        for (size_t i = 0; i < total; ++i) has[i] = m.state[i] == value;
+        const std::vector<uint8_t> near = dilate(has, w, h, options.band);
+        for (size_t i = 0; i < total; ++i)
+            if (near[i] && m.state[i] != value) m.band[i] = 1;
+    }
+    m.wrong.assign(total, 0);
+    double sum = 0.0;
+    for (size_t i = 0; i < total; ++i) {
+        if (m.state[i] == 0) continue;
+        ++m.receivers;
+        const uint8_t* x = &actual.rgba[4 * i];
+        const uint8_t* s = &shadowed.rgba[4 * i];
+        sum += (std::abs(int(x[0]) - int(s[0])) + std::abs(int(x[1]) - int(s[1])) + std::abs(int(x[2]) - int(s[2]))) / 3.0;
+        if (m.band[i]) {
+            ++m.banded;
+            continue;
+        }
+        if (actual_state[i] != m.state[i]) {
+            m.wrong[i] = 1;
+            ++m.wrong_side;
+        }
+    }
+    if (m.receivers > 0) m.mae = sum / double(m.receivers);
+    if (m.receivers > m.banded) m.wrong_side_share = double(m.wrong_side) / double(m.receivers - m.banded);
+    return m;
+}
+
+lab::Image8 shadow_metric_picture(const lab::Image8& shadowed, const ShadowMetric& metric) {
+    lab::Image8 out;
+    out.width = shadowed.width;
+    out.height = shadowed.height;
+    out.rgba.assign(shadowed.rgba.size(), 255);
+    for (size_t i = 0; i < metric.state.size(); ++i) {
+        const uint8_t* p = &shadowed.rgba[4 * i];
+        uint8_t* o = &out.rgba[4 * i];
+        const int l = (54 * p[0] + 183 * p[1] + 19 * p[2]) / 256;
+        o[0] = o[1] = o[2] = static_cast<uint8_t>(l / 3);
+        if (metric.state[i] && metric.band[i]) o[0] = 0, o[1] = 0, o[2] = 110;
+        if (metric.wrong[i]) {
+            const bool too_bright = metric.state[i] == 2;  // S in shadow, X lit
+            o[0] = too_bright ? 255 : 0, o[1] = too_bright ? 40 : 255, o[2] = too_bright ? 40 : 255;
+        }
+    }
+    return out;
+}
+
 }  // namespace ref

@@ -125,4 +125,50 @@ ErrorStats error_stats(const lab::Image8& a, const lab::Image8& b, const std::ve
 lab::Image8 error_heatmap(const lab::Image8& a, const lab::Image8& b, const std::vector<uint8_t>& mask = {},
                           int full_scale = 32);
 
+// ---------------------------------------------------------------------------
+// Lab 4: the shadow error metric (docs/testing.md, "The shadow error metric").
+// Three reference pictures (ref::render_shadow_reference): S = ray-traced shadows, U = every
+// light unoccluded, Z = the shadow-casting lights off. For a picture X and a pixel p (8-bit
+// sRGB values, R, G, B as a vector):
+//   receiver:        |U − Z| ≥ min_contrast in some channel (a shadow-casting light shows there);
+//   lit fraction:    f_X = (X − Z)·(U − Z) / |U − Z|²  (1 = fully lit, 0 = fully shadowed);
+//   state:           lit if f ≥ ½, shadow otherwise; non-receivers have a state of their own;
+//   band:            pixels with a pixel of another S-state within Chebyshev distance k;
+//   wrong_side:      receivers outside the band where state(X) ≠ state(S);
+//   mae:             over all receivers, the mean of |X − S| averaged over R, G, B, in 1/255.
+// ---------------------------------------------------------------------------
+
+struct ShadowMetricOptions {
+    int band = 4;          // k, in pixels (the PCF radius in texels + 1; see docs/testing.md)
+    int min_contrast = 3;  // 1/255: smaller light contributions are too faint to classify
+};
+
+struct ShadowMetric {
+    int width = 0, height = 0;
+    size_t receivers = 0;         // pixels a shadow-casting light reaches in U
+    size_t banded = 0;            // receivers within the band around S's shadow edges
+    size_t wrong_side = 0;        // receivers outside the band on the other side than in S
+    double wrong_side_share = 0;  // wrong_side / (receivers − banded), 0 … 1
+    double mae = 0.0;             // mean |X − S| over receivers, 1/255 units
+    std::vector<uint8_t> state;   // S's state per pixel: 0 not a receiver, 1 lit, 2 shadow
+    std::vector<uint8_t> band;    // 1 = within k of a state change of S
+    std::vector<uint8_t> wrong;   // 1 = a wrong-side pixel
+
+    int band_k = 0;
+
+    std::string line() const;  // "wrong_side=… wrong_side_pct=… shadow_mae=… receivers=… banded=… band_k=…"
+};
+
+// The lit fraction f of colour x between z (light off) and u (light on), 8-bit RGB.
+double lit_fraction(const uint8_t x[3], const uint8_t u[3], const uint8_t z[3]);
+
+// The metric of `actual` against the shadowed reference S (all four images the same size;
+// throws std::invalid_argument otherwise).
+ShadowMetric shadow_metric(const lab::Image8& actual, const lab::Image8& shadowed, const lab::Image8& unshadowed,
+                           const lab::Image8& unlit, const ShadowMetricOptions& options = {});
+
+// A picture of the metric: S's luminance dimmed, receivers in the band dark blue, wrong-side
+// pixels red (X lit where S is in shadow) or cyan (X in shadow where S is lit).
+lab::Image8 shadow_metric_picture(const lab::Image8& shadowed, const ShadowMetric& metric);
+
 }  // namespace ref

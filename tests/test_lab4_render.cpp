@@ -1,0 +1,397 @@
+// test_lab4_render.cpp — the real lab 4 binary, rendering headless, against the ray-traced reference.
+//
+// Each test writes a small scene (test_output/lab4/NAME.json), runs
+//     lab4_shadows --scene FILE --headless --validate --out OUT.png --width 320 --height 180
+// (exit 0 = no validation message) and judges the PNG with the shadow error metric
+// (docs/testing.md, "The shadow error metric") against ref::render_shadow_reference()
+// (tests/reference/cpu_shadow.*: one hard shadow ray per pixel and light, in double). Expected
+// pictures never come from the lab itself.
+//
+// Scenes use flat-faced casters (cubes, icosahedra): a tessellated sphere's terminator is a
+// property of its facets that a biased shadow map hides on purpose (test_cpu_shadow covers it).
+// The band k is the default kernel's radius plus one texel, k = 2 (docs/testing.md); every scene's
+// shadow texels are smaller than its pixels.
+#include "reference/cpu_reference.h"
+#include "reference/cpu_shadow.h"
+#include "reference/image_compare.h"
+#include "image_io.h"
+#include "lab_runner.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab4";
+constexpr int kWidth = 320, kHeight = 180;
+constexpr int kBand = 2;  // (3 − 1)/2 + 1: the default 3×3 kernel
+
+// --- scenes -------------------------------------------------------------------------------------
+
+json base_scene() {
+    return json::parse(R"({
+      "camera": {"position": [0, 3.4, 4.4], "target": [0, 0.2, 0], "fov_y_deg": 55, "near": 0.05, "far": 100},
+      "background": [0.1, 0.1, 0.12],
+      "ambient": {"intensity": 0.1},
+      "lighting": {"nan_check": "on"},
+      "materials": {"floor": {"albedo": [0.8, 0.8, 0.8]}, "box": {"albedo": [0.8, 0.35, 0.2]},
+                    "stone": {"albedo": [0.3, 0.7, 0.4]},
+                    "glass": {"albedo": [0.2, 0.4, 0.9], "opacity": 0.4},
+                    "amber": {"albedo": [0.9, 0.6, 0.1], "opacity": 0.3},
+                    "smoke": {"albedo": [0.5, 0.5, 0.5], "opacity": 0.5}},
+      "lights": [], "objects": []})");
+}
+
+json floor(double size = 10) { return {{"mesh", "plane"}, {"material", "floor"}, {"scale", {size, 1, size}}}; }
+
+json thing(const std::string& mesh, const std::string& material, std::vector<double> position,
+           std::vector<double> scale = {1, 1, 1}, std::vector<double> rotation = {0, 0, 0}) {
+    return {{"mesh", mesh}, {"material", material}, {"position", position}, {"scale", scale}, {"rotation_deg", rotation}};
+}
+
+json directional(std::vector<double> direction) {
+    return {{"type", "directional"}, {"direction", direction}, {"cast_shadows", true}};
+}
+json spot(std::vector<double> position, std::vector<double> direction, double outer = 35) {
+    return {{"type", "spot"}, {"position", position}, {"direction", direction}, {"inner_deg", outer - 10},
+            {"outer_deg", outer}, {"cast_shadows", true}};
+}
+json point(std::vector<double> position) {
+    return {{"type", "point"}, {"position", position}, {"cast_shadows", true}};
+}
+
+std::string write_scene(const std::string& name, const json& scene) {
+    fs::create_directories(kOutDir);
+    const std::string file = kOutDir + "/" + name + ".json";
+    std::ofstream(file) << scene.dump(1);
+    return file;
+}
+
+// --- running the lab ----------------------------------------------------------------------------
+
+RunResult run(const std::string& scene_file, const std::string& name, int w = kWidth, int h = kHeight) {
+    const std::string png = kOutDir + "/" + name + ".png";
+    std::error_code ec;
+    fs::remove(png, ec);
+    return run_lab(LAB4_EXE,
+                   "--scene " + quoted(scene_file) + " --headless --validate --out " + quoted(png) + " --width " +
+                       std::to_string(w) + " --height " + std::to_string(h),
+                   kOutDir + "/" + name + ".log");
+}
+
+size_t magenta_pixels(const lab::Image8& image) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
+    return n;
+}
+
+// Renders `scene` with the lab (exit 0, validation clean, no NaN) and the reference.
+struct Judged {
+    bool ok = false;
+    lab::Image8 actual, shadowed, unshadowed, unlit;
+    ref::ShadowReference reference;
+    ref::ShadowMetric metric;
+};
+
+Judged judge(const std::string& name, const json& scene, int band = kBand) {
+    Judged j;
+    const std::string file = write_scene(name, scene);
+    const RunResult r = run(file, name);
+    EXPECT_EQ(r.exit_code, 0) << "lab4_shadows failed on " << file << ":\n" << r.log;
+    const std::string png = kOutDir + "/" + name + ".png";
+    if (r.exit_code != 0 || !fs::exists(png)) return j;
+    j.actual = lab::read_png(png);
+    EXPECT_EQ(magenta_pixels(j.actual), 0u) << "NaN/Inf in " << png;
+    const lab::Scene s = lab::load_scene(file);
+    j.reference = ref::render_shadow_reference(s, kWidth, kHeight);
+    j.shadowed = ref::encode_srgb(j.reference.shadowed);
+    j.unshadowed = ref::encode_srgb(j.reference.unshadowed);
+    j.unlit = ref::encode_srgb(j.reference.unlit);
+    ref::ShadowMetricOptions options;
+    options.band = band;
+    j.metric = ref::shadow_metric(j.actual, j.shadowed, j.unshadowed, j.unlit, options);
+    // For a failure: expected | actual | the metric's picture.
+    lab::write_png(kOutDir + "/" + name + "_expected.png", j.shadowed);
+    lab::write_png(kOutDir + "/" + name + "_metric.png", ref::shadow_metric_picture(j.shadowed, j.metric));
+    j.ok = true;
+    return j;
+}
+
+std::string describe(const Judged& j, const std::string& name) {
+    return j.metric.line() + "\n  see " + kOutDir + "/" + name + "{.png,_expected.png,_metric.png}";
+}
+
+// Pixels deep inside a shadow of the reference: the opaque surface is `object`, no translucent
+// layer in front, the light visibly dimmed (U − S ≥ 3/255) and S constant (±1) over the
+// (2r+1)² neighbourhood. Returns the largest |actual − S| there and how many pixels were checked.
+struct Interior {
+    size_t pixels = 0;
+    int max_diff = 0;
+    std::set<int> levels;  // distinct S values (green channel) seen
+};
+Interior shadow_interior(const Judged& j, int object, int r = 4) {
+    Interior in;
+    const int w = j.shadowed.width, h = j.shadowed.height;
+    const auto at = [&](const lab::Image8& im, int x, int y, int ch) { return int(im.rgba[(size_t(y) * w + x) * 4 + ch]); };
+    for (int y = r; y < h - r; ++y)
+        for (int x = r; x < w - r; ++x) {
+            bool inside = true;
+            for (int dy = -r; dy <= r && inside; ++dy)
+                for (int dx = -r; dx <= r && inside; ++dx) {
+                    const size_t q = size_t(y + dy) * w + size_t(x + dx);
+                    inside = j.reference.shadowed.object_id[q] == object;
+                    for (int ch = 0; ch < 3 && inside; ++ch)
+                        inside = std::abs(at(j.shadowed, x + dx, y + dy, ch) - at(j.shadowed, x, y, ch)) <= 1;
+                }
+            if (!inside) continue;
+            int dimmed = 0;
+            for (int ch = 0; ch < 3; ++ch) dimmed = std::max(dimmed, at(j.unshadowed, x, y, ch) - at(j.shadowed, x, y, ch));
+            if (dimmed < 3) continue;
+            ++in.pixels;
+            in.levels.insert(at(j.shadowed, x, y, 1));
+            for (int ch = 0; ch < 3; ++ch)
+                in.max_diff = std::max(in.max_diff, std::abs(at(j.actual, x, y, ch) - at(j.shadowed, x, y, ch)));
+        }
+    return in;
+}
+
+// A scene with long and short shadows of flat-faced casters: a cube, an icosahedron, a thin post.
+json casters_scene(const json& light) {
+    json s = base_scene();
+    s["lights"].push_back(light);
+    s["objects"].push_back(floor());
+    s["objects"].push_back(thing("cube", "box", {-1.2, 0.5, 0.3}, {1, 1, 1}, {0, 25, 0}));
+    s["objects"].push_back(thing("icosahedron", "stone", {1.2, 0.9, -0.6}, {1.2, 1.2, 1.2}));
+    s["objects"].push_back(thing("cube", "box", {0.4, 0.9, 1.3}, {0.12, 1.8, 0.12}));
+    return s;
+}
+
+// --- each light kind against the reference ------------------------------------------------------
+
+void expect_matches_reference(const std::string& name, const json& light) {
+    const Judged j = judge(name, casters_scene(light));
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, name));
+    EXPECT_GT(j.metric.receivers, 10000u);
+    // The reference's picture holds shadows at all (the scene is not vacuous).
+    EXPECT_GT(std::count(j.metric.state.begin(), j.metric.state.end(), 2), 500);
+    EXPECT_LE(j.metric.wrong_side_share, 0.002);
+    EXPECT_LE(j.metric.mae, 2.0);
+}
+
+TEST(Lab4Shadows, DirectionalLightMatchesTheReference) {
+    expect_matches_reference("directional", directional({-0.6, -1, -0.35}));
+}
+
+TEST(Lab4Shadows, SpotLightMatchesTheReference) {
+    expect_matches_reference("spot", spot({1.5, 4, 2.5}, {-1.5, -4, -2.5}, 40));
+}
+
+TEST(Lab4Shadows, PointLightMatchesTheReference) {
+    json light = point({1.5, 2.6, 1.6});
+    expect_matches_reference("point", light);
+}
+
+// --- bias: no acne, no peter-panning -------------------------------------------------------------
+
+TEST(Lab4Shadows, NoAcneOnALitPlaneAt80Degrees) {
+    // Only the floor, which casts onto itself; each light 80° from its normal at the centre.
+    const double s80 = std::sin(80.0 * M_PI / 180.0), c80 = std::cos(80.0 * M_PI / 180.0);
+    const std::vector<std::pair<std::string, json>> lights = {
+        {"acne_directional", directional({-s80, -c80, 0})},
+        {"acne_spot", spot({-5 * s80, 5 * c80, 0}, {s80, -c80, 0}, 30)},
+        {"acne_point", point({-4 * s80, 4 * c80, 0})}};
+    for (const auto& [name, light] : lights) {
+        json s = base_scene();
+        s["lights"].push_back(light);
+        s["objects"].push_back(floor(8));
+        const Judged j = judge(name, s, 1);
+        if (!j.ok) continue;
+        SCOPED_TRACE(describe(j, name));
+        EXPECT_GT(j.metric.receivers, 5000u);
+        EXPECT_EQ(j.metric.wrong_side, 0u);  // acne would darken pixels the reference lights
+        EXPECT_LE(j.metric.mae, 2.0);
+    }
+}
+
+TEST(Lab4Shadows, ContactShadowsStartWithin2PixelsOfTheContactLine) {
+    // Cubes standing on the floor: with the default bias the shadow must reach the base (no
+    // peter-panning). Every shadow edge within k = 2 px of the reference's.
+    json s = base_scene();
+    s["lights"].push_back(directional({-1, -1.1, -0.5}));
+    s["objects"].push_back(floor());
+    s["objects"].push_back(thing("cube", "box", {0, 0.5, 0}, {1, 1, 1}, {0, 20, 0}));
+    s["objects"].push_back(thing("cube", "stone", {1.6, 0.25, 1.0}, {0.5, 0.5, 0.5}));
+    const Judged j = judge("contact", s, 2);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "contact"));
+    EXPECT_EQ(j.metric.wrong_side, 0u);
+}
+
+// --- translucent shadows --------------------------------------------------------------------------
+
+TEST(Lab4Shadows, TranslucentShadowInteriorWithin2Of255) {
+    json s = base_scene();
+    s["lights"].push_back(directional({-0.3, -1, -0.2}));
+    s["objects"].push_back(floor());
+    s["objects"].push_back(thing("cube", "glass", {0, 1.2, 0}, {1.6, 0.6, 1.6}));
+    const Judged j = judge("translucent", s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "translucent"));
+    const Interior in = shadow_interior(j, 0);
+    EXPECT_GT(in.pixels, 300u) << "no translucent shadow interior to check";
+    EXPECT_LE(in.max_diff, 2);
+}
+
+TEST(Lab4Shadows, TwoOverlappingTranslucentObjectsMultiply) {
+    // Two quads facing the light (α 0.3 and 0.5) overlapping in the middle: three shadow levels,
+    // the overlap letting 0.7 · 0.5 through.
+    json s = base_scene();
+    s["lights"].push_back(directional({0, -1, -0.15}));
+    s["objects"].push_back(floor());
+    s["objects"].push_back(thing("plane", "amber", {-0.6, 1.0, 0}, {2, 1, 1.6}));
+    s["objects"].push_back(thing("plane", "smoke", {0.6, 1.6, 0}, {2, 1, 1.6}));
+    const Judged j = judge("overlap", s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "overlap"));
+    const Interior in = shadow_interior(j, 0);
+    EXPECT_GE(in.levels.size(), 3u) << "the three shadow levels (α 0.3, 0.5 and both) must all be in view";
+    EXPECT_GT(in.pixels, 300u);
+    EXPECT_LE(in.max_diff, 2);
+}
+
+// --- coverage -------------------------------------------------------------------------------------
+
+TEST(Lab4Shadows, CasterBehindTheLightCastsNothing) {
+    // An opaque plate above each light: the floor below is fully lit.
+    const std::vector<std::pair<std::string, json>> lights = {
+        {"behind_spot", spot({0, 2, 0}, {0, -1, 0}, 60)}, {"behind_point", point({0, 2, 0})}};
+    for (const auto& [name, light] : lights) {
+        json s = base_scene();
+        s["lights"].push_back(light);
+        s["objects"].push_back(floor());
+        s["objects"].push_back(thing("plane", "box", {0, 3, 0}, {6, 1, 6}));
+        const Judged j = judge(name, s, 1);
+        if (!j.ok) continue;
+        SCOPED_TRACE(describe(j, name));
+        EXPECT_GT(j.metric.receivers, 5000u);
+        EXPECT_EQ(j.metric.wrong_side, 0u);
+        EXPECT_LE(j.metric.mae, 2.0);
+    }
+}
+
+TEST(Lab4Shadows, ReceiverOutsideTheShadowMapsCoverageIsLit) {
+    // A 60 m floor that casts nothing and one small caster: a map fitted to the casters does not
+    // reach most of the floor, which must come out lit (not black), and the cube's shadow right.
+    json s = base_scene();
+    s["camera"] = {{"position", {0, 2.5, 9}}, {"target", {0, 0, -6}}, {"fov_y_deg", 60}, {"near", 0.05}, {"far", 200}};
+    s["lights"].push_back(directional({-0.5, -1, -0.4}));
+    json big_floor = floor(60);
+    big_floor["cast_shadows"] = false;
+    s["objects"].push_back(big_floor);
+    s["objects"].push_back(thing("cube", "box", {0, 0.5, 2}));
+    const Judged j = judge("coverage", s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "coverage"));
+    EXPECT_GT(j.metric.receivers, 20000u);
+    EXPECT_LE(j.metric.wrong_side_share, 0.002);
+    EXPECT_LE(j.metric.mae, 2.0);
+}
+
+TEST(Lab4Shadows, PointLightCubeSeamsShowNoCracks) {
+    // Light 1.5 above the floor: the cube map's face borders meet the floor where |x| = 1.5,
+    // |z| = 1.5 and, beyond, where |x| = |z|. Casters straddle them; the lit floor between must show
+    // neither a lit crack in a shadow nor a dark line across the light.
+    json s = base_scene();
+    s["camera"] = {{"position", {0, 9, 3}}, {"target", {0, 0, 0}}, {"fov_y_deg", 60}, {"near", 0.05}, {"far", 100}};
+    s["lights"].push_back(point({0, 1.5, 0}));
+    s["objects"].push_back(floor(12));
+    s["objects"].push_back(thing("cube", "box", {1.5, 0.2, 0.3}, {0.4, 0.4, 0.4}));
+    s["objects"].push_back(thing("cube", "stone", {2.2, 0.2, 2.2}, {0.4, 0.4, 0.4}, {0, 45, 0}));
+    s["objects"].push_back(thing("cube", "box", {-0.4, 0.2, -1.5}, {0.4, 0.4, 0.4}));
+    const Judged j = judge("cube_seams", s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "cube_seams"));
+    EXPECT_GT(j.metric.receivers, 20000u);
+    EXPECT_EQ(j.metric.wrong_side, 0u);
+    EXPECT_LE(j.metric.mae, 2.0);
+}
+
+// --- stress: exit 0, no validation message, no NaN, a picture -------------------------------------
+
+void expect_survives(const std::string& name, const json& scene, int w = 160, int h = 90) {
+    const std::string file = write_scene(name, scene);
+    const RunResult r = run(file, name, w, h);
+    EXPECT_EQ(r.exit_code, 0) << name << ":\n" << r.log;
+    const std::string png = kOutDir + "/" + name + ".png";
+    if (r.exit_code != 0 || !fs::exists(png)) return;
+    const lab::Image8 image = lab::read_png(png);
+    EXPECT_EQ(magenta_pixels(image), 0u) << "NaN/Inf in " << png;
+    int brightest = 0;
+    for (size_t i = 0; i < image.rgba.size(); i += 4)
+        brightest = std::max({brightest, int(image.rgba[i]), int(image.rgba[i + 1]), int(image.rgba[i + 2])});
+    EXPECT_GT(brightest, 40) << "a black picture: " << png;
+}
+
+TEST(Lab4Stress, LightAlongPlusAndMinusY) {
+    // The fitted frustum's up vector degenerates when the light travels exactly along ±Y.
+    expect_survives("along_minus_y", casters_scene(directional({0, -1, 0})));
+    expect_survives("along_plus_y", casters_scene(directional({0, 1, 0})));
+    expect_survives("spot_down", casters_scene(spot({0, 4, 0}, {0, -1, 0})));
+}
+
+TEST(Lab4Stress, LightInsideAnObject) {
+    for (const auto& [name, light] : std::vector<std::pair<std::string, json>>{
+             {"inside_point", point({-1.2, 0.5, 0.3})}, {"inside_spot", spot({-1.2, 0.5, 0.3}, {0, -1, 0})}}) {
+        json s = casters_scene(light);
+        s["lights"].push_back({{"type", "directional"}, {"direction", {-1, -1, -1}}});  // something to see
+        expect_survives(name, s);
+    }
+}
+
+TEST(Lab4Stress, CasterTouchingTheSpotLightsNearPlane) {
+    json s = casters_scene(spot({0, 2, 0}, {0, -1, 0}, 45));
+    // A cube right under the light, its top face 0.05 and 0.01 below it and exactly at it.
+    s["objects"].push_back(thing("cube", "stone", {0, 1.7, 0}, {0.5, 0.5, 0.5}));
+    s["lights"].push_back({{"type", "directional"}, {"direction", {-1, -1, -1}}});  // something to see
+    for (const auto& [suffix, y] : std::vector<std::pair<std::string, double>>{{"005", 1.7}, {"001", 1.74}, {"0", 1.75}}) {
+        s["objects"][4]["position"] = {0, y, 0};
+        expect_survives("spot_near_plane_" + suffix, s);
+    }
+}
+
+TEST(Lab4Stress, ResolutionOneAndTheDeviceMaximum) {
+    for (const int resolution : {1, 16384}) {
+        std::vector<std::pair<std::string, json>> lights = {{"dir", directional({-0.6, -1, -0.35})},
+                                                           {"spot", spot({1.5, 4, 2.5}, {-1.5, -4, -2.5}, 40)}};
+        if (resolution == 1) lights.push_back({"point", point({1.5, 2.6, 1.6})});  // 6 faces of 16384² exceed memory
+        for (auto& [kind, light] : lights) {
+            light["shadow"] = {{"resolution", resolution}};
+            expect_survives("resolution_" + std::to_string(resolution) + "_" + kind, casters_scene(light));
+        }
+    }
+}
+
+TEST(Lab4Stress, ZeroAndHugeBiases) {
+    for (const double bias : {0.0, 1e6}) {
+        for (auto [kind, light] : std::vector<std::pair<std::string, json>>{
+                 {"dir", directional({-0.6, -1, -0.35})}, {"spot", spot({1.5, 4, 2.5}, {-1.5, -4, -2.5}, 40)},
+                 {"point", point({1.5, 2.6, 1.6})}}) {
+            light["shadow"] = {{"bias", bias}, {"slope_bias", bias}, {"normal_offset", bias}};
+            expect_survives(std::string("bias_") + (bias > 0 ? "huge_" : "zero_") + kind, casters_scene(light));
+        }
+    }
+}
+
+}  // namespace
