@@ -9,8 +9,9 @@
 //
 // Scenes use flat-faced casters (cubes, icosahedra): a tessellated sphere's terminator is a
 // property of its facets that a biased shadow map hides on purpose (test_cpu_shadow covers it).
-// The band k is the default kernel's radius plus one texel, k = 2 (docs/testing.md); every scene's
-// shadow texels are smaller than its pixels.
+// The band k is the default kernel's radius plus one texel (docs/testing.md): k = 1 for the default
+// 1×1 kernel; the contact test uses the 2 px. Every scene's shadow texels are smaller than
+// its pixels.
 #include "reference/cpu_reference.h"
 #include "reference/cpu_shadow.h"
 #include "reference/image_compare.h"
@@ -34,7 +35,8 @@ using json = nlohmann::json;
 
 const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab4";
 constexpr int kWidth = 320, kHeight = 180;
-constexpr int kBand = 2;  // (3 − 1)/2 + 1: the default 3×3 kernel
+// k = (N − 1)/2 + 1 for the default N×N kernel (the tests use the default shadow settings).
+const int kBand = (lab::ShadowDesc{}.pcf - 1) / 2 + 1;
 
 // --- scenes -------------------------------------------------------------------------------------
 
