@@ -1,6 +1,7 @@
 #include "imgui_renderer.h"
 
 #include "pipeline_builder.h"
+#include "render_target.h"
 #include "shader.h"
 #include "texture.h"
 
@@ -79,17 +80,7 @@ Handle<VkRenderPass> make_overlay_pass(const VulkanContext& vk, VkFormat format)
     dependencies[1].dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
     dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
 
-    VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    info.attachmentCount = 1;
-    info.pAttachments = &color;
-    info.subpassCount = 1;
-    info.pSubpasses = &subpass;
-    info.dependencyCount = 2;
-    info.pDependencies = dependencies;
-    VkRenderPass pass;
-    VK_CHECK(vkCreateRenderPass(vk.device(), &info, nullptr, &pass));
-    VkDevice device = vk.device();
-    return Handle<VkRenderPass>(pass, [device](VkRenderPass p) { vkDestroyRenderPass(device, p, nullptr); });
+    return create_render_pass(vk, 1, &color, subpass, dependencies);
 }
 
 // Blending of premultiplied colour: out = src.rgb + dst.rgb · (1 − src.a) (alpha likewise).

@@ -1,5 +1,6 @@
 #include "offscreen.h"
 
+#include "render_target.h"
 #include "vk_check.h"
 
 namespace lab {
@@ -52,17 +53,7 @@ Handle<VkRenderPass> make_offscreen_pass(const VulkanContext& vk, VkFormat color
     dependencies[1].dstStageMask = shaders;
     dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
 
-    VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    info.attachmentCount = uint32_t(attachments.size());
-    info.pAttachments = attachments.data();
-    info.subpassCount = 1;
-    info.pSubpasses = &subpass;
-    info.dependencyCount = 2;
-    info.pDependencies = dependencies;
-    VkRenderPass pass;
-    VK_CHECK(vkCreateRenderPass(vk.device(), &info, nullptr, &pass));
-    VkDevice device = vk.device();
-    return Handle<VkRenderPass>(pass, [device](VkRenderPass p) { vkDestroyRenderPass(device, p, nullptr); });
+    return create_render_pass(vk, uint32_t(attachments.size()), attachments.data(), subpass, dependencies);
 }
 
 Handle<VkSampler> make_depth_sampler(const VulkanContext& vk, bool linear, bool compare) {

@@ -50,8 +50,14 @@ Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_fo
     dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
     dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
 
+    return create_render_pass(vk, 2, attachments, subpass, dependencies);
+}
+
+Handle<VkRenderPass> create_render_pass(const VulkanContext& vk, uint32_t attachment_count,
+                                        const VkAttachmentDescription* attachments, const VkSubpassDescription& subpass,
+                                        const VkSubpassDependency (&dependencies)[2]) {
     VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    info.attachmentCount = 2;
+    info.attachmentCount = attachment_count;
     info.pAttachments = attachments;
     info.subpassCount = 1;
     info.pSubpasses = &subpass;

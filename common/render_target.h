@@ -43,6 +43,12 @@ public:
 // The pieces both targets share: one render pass layout and per-slot command buffers + fences.
 Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_format, VkImageLayout color_final_layout);
 
+// A render pass of one subpass with its two external dependencies (before and after), owned by
+// a Handle: what every pass here (frame, UI overlay, shadow maps) is made of.
+Handle<VkRenderPass> create_render_pass(const VulkanContext& vk, uint32_t attachment_count,
+                                        const VkAttachmentDescription* attachments, const VkSubpassDescription& subpass,
+                                        const VkSubpassDependency (&dependencies)[2]);
+
 // A framebuffer for `pass` over a colour and a depth view.
 Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pass, VkImageView color,
                                        VkImageView depth, VkExtent2D extent);
