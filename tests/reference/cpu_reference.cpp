@@ -68,6 +68,29 @@ bool ray_box(const Ray& ray, const glm::dvec3& inv_dir, const Box& box, double t
     return true;
 }
 
+// Walks the BVH: every leaf whose box the ray meets within [t_min, t_max] hands each of its
+// triangle indices to leaf(i). `t_max` is read as the walk goes, so a nearest-hit search can
+// shrink it; leaf returns false to stop the walk (then walk returns false).
+template <class Leaf>
+bool walk(const std::vector<Node>& nodes, const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) {
+    const glm::dvec3 inv_dir(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z);
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes[stack[--top]];
+        if (!ray_box(ray, inv_dir, node.box, t_min, t_max)) continue;
+        if (node.count == 0) {
+            stack[top++] = node.first;
+            stack[top++] = node.first + 1;
+            continue;
+        }
+        for (int i = node.first; i < node.first + node.count; ++i)
+            if (!leaf(i)) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -460,66 +483,39 @@ bool SceneGeometry::for_each_hit(const Ray& ray, double t_min, double t_max,
                                  const std::function<bool(const CrossedTriangle&)>& visit) const {
     const Impl& g = *impl_;
     if (g.triangles.empty()) return true;
-    const glm::dvec3 inv_dir(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z);
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& node = g.nodes[stack[--top]];
-        if (!ray_box(ray, inv_dir, node.box, t_min, t_max)) continue;
-        if (node.count == 0) {
-            stack[top++] = node.first;
-            stack[top++] = node.first + 1;
-            continue;
-        }
-        for (int i = node.first; i < node.first + node.count; ++i) {
-            const Triangle& tri = g.triangles[i];
-            TriangleHit h;
-            bool front = true;
-            if (!intersect_facing(ray, tri.v0, tri.v1, tri.v2, t_min, t_max, Facing::Both, &h, &front)) continue;
-            if (!visit(CrossedTriangle{h.t, tri.object_id, tri.triangle_id, front, h.b1, h.b2, i})) return false;
-        }
-    }
-    return true;
+    return walk(g.nodes, ray, t_min, t_max, [&](int i) {
+        const Triangle& tri = g.triangles[i];
+        TriangleHit h;
+        bool front = true;
+        if (!intersect_facing(ray, tri.v0, tri.v1, tri.v2, t_min, t_max, Facing::Both, &h, &front)) return true;
+        return visit(CrossedTriangle{h.t, tri.object_id, tri.triangle_id, front, h.b1, h.b2, i});
+    });
 }
 
 bool SceneGeometry::trace(const Ray& ray, double t_min, double t_max, Hit* out, Facing facing) const {
     const Impl& g = *impl_;
     if (g.triangles.empty()) return false;
-    const glm::dvec3 inv_dir(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z);
 
     const Triangle* best = nullptr;
     TriangleHit best_hit;
     bool best_front = true;
-    double best_t = t_max;
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& node = g.nodes[stack[--top]];
-        if (!ray_box(ray, inv_dir, node.box, t_min, best_t)) continue;
-        if (node.count == 0) {
-            stack[top++] = node.first;
-            stack[top++] = node.first + 1;
-            continue;
-        }
-        for (int i = node.first; i < node.first + node.count; ++i) {
-            const Triangle& tri = g.triangles[i];
-            TriangleHit h;
-            bool front = true;
-            if (!intersect_facing(ray, tri.v0, tri.v1, tri.v2, t_min, best_t, facing, &h, &front)) continue;
-            // Ties (a ray exactly through a shared edge, or coplanar overlap) go
-            // to the lower (object, triangle) so the result never depends on BVH order.
-            if (best && h.t == best_t &&
-                std::make_pair(tri.object_id, tri.triangle_id) >
-                    std::make_pair(best->object_id, best->triangle_id))
-                continue;
-            best = &tri;
-            best_hit = h;
-            best_front = front;
-            best_t = h.t;
-        }
-    }
+    double best_t = t_max;  // shrinks as nearer hits are found: the walk skips boxes beyond it
+    walk(g.nodes, ray, t_min, best_t, [&](int i) {
+        const Triangle& tri = g.triangles[i];
+        TriangleHit h;
+        bool front = true;
+        if (!intersect_facing(ray, tri.v0, tri.v1, tri.v2, t_min, best_t, facing, &h, &front)) return true;
+        // Ties (a ray exactly through a shared edge, or coplanar overlap) go
+        // to the lower (object, triangle) so the result never depends on BVH order.
+        if (best && h.t == best_t &&
+            std::make_pair(tri.object_id, tri.triangle_id) > std::make_pair(best->object_id, best->triangle_id))
+            return true;
+        best = &tri;
+        best_hit = h;
+        best_front = front;
+        best_t = h.t;
+        return true;
+    });
     if (!best) return false;
 
     if (out) g.fill_hit(*best, best_hit, best_front, out);
