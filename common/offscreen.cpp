@@ -90,14 +90,31 @@ LayeredTarget& LayeredTarget::operator=(LayeredTarget&& other) noexcept {
         framebuffers = std::move(other.framebuffers);  // the old ones are destroyed before their views
         layer_views = std::move(other.layer_views);
         image = std::move(other.image);
+        pass = other.pass;
+        size = other.size;
+        color = other.color;
     }
     return *this;
+}
+
+void LayeredTarget::begin(VkCommandBuffer cmd, uint32_t i, float depth) const {
+    begin_offscreen_pass(cmd, pass, framebuffers[i], size, color, depth);
+}
+
+void LayeredTarget::clear(VkCommandBuffer cmd) const {
+    for (uint32_t i = 0; i < layers(); ++i) {
+        begin(cmd, i);
+        vkCmdEndRenderPass(cmd);
+    }
 }
 
 LayeredTarget create_layered_target(const VulkanContext& vk, VkRenderPass pass, uint32_t size, bool cube, VkFormat format,
                                     VkImageUsageFlags usage, VkImageAspectFlags aspect,
                                     const std::vector<VkImageView>& more) {
     LayeredTarget t;
+    t.pass = pass;
+    t.size = size;
+    t.color = (aspect & VK_IMAGE_ASPECT_COLOR_BIT) != 0;
     t.image = cube ? create_image_cube(vk, size, format, usage, aspect) : create_image_2d(vk, {size, size}, format, usage, aspect);
     for (uint32_t layer = 0; layer < (cube ? 6u : 1u); ++layer) {
         if (cube) t.layer_views.push_back(create_layer_view(vk, t.image.image, format, aspect, layer));

@@ -31,12 +31,19 @@ struct LayeredTarget {
     Image image;                                      // its view (2D or cube) is what shaders sample
     std::vector<Handle<VkImageView>> layer_views;     // a cube's faces (2D: none, the image's view)
     std::vector<Handle<VkFramebuffer>> framebuffers;  // [layer]
+    VkRenderPass pass = VK_NULL_HANDLE;
+    uint32_t size = 0;   // size² texels
+    bool color = false;  // a colour image (else depth)
 
     LayeredTarget() = default;
     LayeredTarget(LayeredTarget&&) noexcept = default;
     LayeredTarget& operator=(LayeredTarget&& other) noexcept;  // framebuffers, views, then the image
     uint32_t layers() const { return uint32_t(framebuffers.size()); }
     VkImageView layer(uint32_t i) const { return layer_views.empty() ? image.view.get() : layer_views[i].get(); }
+    // begin_offscreen_pass() on layer `i`: cleared, viewport and scissor set.
+    void begin(VkCommandBuffer cmd, uint32_t i, float depth = 1.0f) const;
+    // Every layer cleared (a pass begun and ended on each), e.g. before anything samples it.
+    void clear(VkCommandBuffer cmd) const;
 };
 
 // `size`² texels of `format`, 1 layer or 6 (`cube`); each framebuffer's attachments are the layer,

@@ -84,13 +84,9 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     stand_in_2d_ = make_map(-1, false, 1, true);
     stand_in_cube_ = make_map(-1, true, 1, true);
     vk.run_once([&](VkCommandBuffer cmd) {
-        for (Map* m : {&stand_in_2d_, &stand_in_cube_}) {
-            for (uint32_t f = 0; f < m->depth.layers(); ++f) {
-                lab::begin_offscreen_pass(cmd, depth_pass_, m->depth.framebuffers[f], 1, false);
-                vkCmdEndRenderPass(cmd);
-                lab::begin_offscreen_pass(cmd, translucent_pass_, m->transmittance.framebuffers[f], 1, true);
-                vkCmdEndRenderPass(cmd);
-            }
+        for (const Map* m : {&stand_in_2d_, &stand_in_cube_}) {
+            m->depth.clear(cmd);
+            m->transmittance.clear(cmd);
         }
     });
 }
@@ -111,7 +107,6 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
     Map m;
     m.light = light;
     m.cube = cube;
-    m.resolution = resolution;
     const VkImageUsageFlags sampled_depth = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     const VkImageUsageFlags sampled_color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     m.depth = lab::create_layered_target(vk_, depth_pass_, resolution, cube, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT);
@@ -209,7 +204,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
         }
         // Only the lookup's numbers: the map still holds what they describe.
         GpuShadow gpu = map.gpu;
-        gpu.params.x *= light.shadow.normal_offset / float(map.resolution);
+        gpu.params.x *= light.shadow.normal_offset / float(map.depth.size);
         out->slot[slot] = gpu;
     }
 }
@@ -251,10 +246,9 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // normal_offset / resolution.
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
 
-    const uint32_t faces = map.cube ? 6 : 1;
-    for (uint32_t face = 0; face < faces; ++face) {
+    for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4& view_projection = map.cube ? f.faces[face] : f.view_projection;
-        lab::begin_offscreen_pass(cmd, depth_pass_, map.depth.framebuffers[face], map.resolution, false);
+        map.depth.begin(cmd, face);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
         // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
         // (grows with how steeply the triangle's depth changes across a texel).
@@ -262,7 +256,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         draw_casters(cmd, view_projection, lighting, false, light);
         vkCmdEndRenderPass(cmd);
         if (!translucent_) continue;
-        lab::begin_offscreen_pass(cmd, translucent_pass_, map.transmittance.framebuffers[face], map.resolution, true);
+        map.transmittance.begin(cmd, face);
         for (const auto* pipeline : {&nearest_[map.cube], &multiply_[map.cube]}) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
             draw_casters(cmd, view_projection, lighting, true, light);

@@ -65,8 +65,7 @@ private:
     struct Map {
         int light = -1;  // index into Lighting::lights
         bool cube = false;
-        uint32_t resolution = 1;
-        lab::LayeredTarget depth;          // the map: one framebuffer per face
+        lab::LayeredTarget depth;          // the map (its size: the resolution), one framebuffer per face
         lab::Image scratch_depth;          // translucent scenes: the transmittance's depth test, not kept
         lab::LayeredTarget transmittance;  // r = Π(1 − α), g = nearest translucent depth
         std::vector<float> key;  // what the map was rendered from (change tracking)

@@ -22,11 +22,10 @@ int srgb8(double v) {
 
 int red_at(const lab::Image8& image, int x, int y) { return image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4]; }
 
-// Clears every layer of `target` (a depth-only pass) to depth[layer].
-void clear_layers(VkCommandBuffer cmd, VkRenderPass pass, const lab::LayeredTarget& target, uint32_t size,
-                  const std::vector<float>& depth) {
+// Clears every layer of `target` to depth[layer] (its pass begun and ended on each).
+void clear_layers(VkCommandBuffer cmd, const lab::LayeredTarget& target, const std::vector<float>& depth) {
     for (uint32_t layer = 0; layer < target.layers(); ++layer) {
-        lab::begin_offscreen_pass(cmd, pass, target.framebuffers[layer], size, false, depth[layer]);
+        target.begin(cmd, layer, depth[layer]);
         vkCmdEndRenderPass(cmd);
     }
 }
@@ -54,6 +53,7 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         lab::LayeredTarget flat = lab::create_layered_target(vk, pass, 8, false, format, usage, VK_IMAGE_ASPECT_DEPTH_BIT);
         ASSERT_EQ(flat.layers(), 1u);
         EXPECT_EQ(flat.layer(0), flat.image.view.get());
+        EXPECT_TRUE(cube.pass == pass.get() && cube.size == 4 && flat.size == 8 && !cube.color);
 
         lab::DepthView depth_view(vk, frame_target.render_pass(), 7);
         // Frame 1: layer i of the cube at depth (i + 1) / 8, orthographic (shown as stored).
@@ -63,7 +63,7 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         const std::vector<float> depths = {0.125f, 0.25f, 0.375f, 0.5f, 0.625f, 0.75f};
         lab::Frame frame;
         ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
-            clear_layers(f.cmd, pass, cube, 4, depths);
+            clear_layers(f.cmd, cube, depths);
         }));
         std::vector<VkImageView> layers;
         for (uint32_t i = 0; i < 6; ++i) layers.push_back(cube.layer(i));
@@ -81,7 +81,7 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         // x ∈ [−0.405, 0.395], y ∈ [0.18, 0.98] → centre pixel (99, 158).
         const float a = 1.1f, b = 1.1f;
         ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
-            clear_layers(f.cmd, pass, flat, 8, {a - b / 3.5f});
+            clear_layers(f.cmd, flat, {a - b / 3.5f});
         }));
         depth_view.draw(frame.cmd, {flat.layer(0)}, glm::vec2(a, b), frame.extent);
         frame_target.end_frame();
