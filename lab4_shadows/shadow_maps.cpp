@@ -93,9 +93,8 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
 
 uint32_t ShadowMaps::clamp_resolution(int requested, bool cube) const {
     const VkPhysicalDeviceLimits& limits = vk_.properties().limits;
-    uint32_t most = std::min({cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D, limits.maxFramebufferWidth,
-                              limits.maxFramebufferHeight});
-    most = std::min(most, uint32_t(std::sqrt(kMaxTexels / (cube ? 6.0 : 1.0))));
+    const uint32_t most = std::min({cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D, limits.maxFramebufferWidth,
+                                    limits.maxFramebufferHeight, uint32_t(std::sqrt(kMaxTexels / (cube ? 6.0 : 1.0)))});
     const uint32_t resolution = std::clamp(uint32_t(std::max(requested, 1)), 1u, most);
     if (resolution != uint32_t(requested))
         std::fprintf(stderr, "warning: shadow map resolution %d: at most %u here (%s), using %u\n", requested, most,
@@ -148,17 +147,15 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
     }
 }
 
-// What the images depend on: each shadow-casting light's type and resolution, translucent casters.
-std::vector<std::string> ShadowMaps::layout_of(const Lighting& lighting) const {
-    std::vector<std::string> layout;
+// What the images depend on: each shadow-casting light's index, type and resolution; whether
+// some caster is translucent (the last number).
+std::vector<int> ShadowMaps::layout_of(const Lighting& lighting) const {
+    std::vector<int> layout;
     const std::vector<int> slots = lighting.shadow_slots();
-    bool translucent = false;
-    for (const Caster& c : objects_) translucent = translucent || (c.casts && translucent_material(lighting, c.material));
     for (size_t i = 0; i < lighting.lights.size(); ++i)
-        if (slots[i] >= 0)
-            layout.push_back(std::to_string(i) + ":" + std::to_string(int(lighting.lights[i].type)) + ":" +
-                             std::to_string(lighting.lights[i].shadow.resolution));
-    layout.push_back(translucent ? "translucent" : "opaque");
+        if (slots[i] >= 0) layout.insert(layout.end(), {int(i), int(lighting.lights[i].type), lighting.lights[i].shadow.resolution});
+    layout.push_back(std::any_of(objects_.begin(), objects_.end(),
+                                 [&](const Caster& c) { return c.casts && translucent_material(lighting, c.material); }));
     return layout;
 }
 
@@ -166,10 +163,8 @@ bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(ligh
 
 void ShadowMaps::draw_view(lab::DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
-    const Map& m = maps_[size_t(slot)];
-    std::vector<VkImageView> layers;
-    for (uint32_t face = 0; face < m.depth.layers(); ++face) layers.push_back(m.depth.layer(face));
-    view.draw(cmd, layers, glm::vec2(m.gpu.params.y, m.gpu.params.z), extent);  // perspective depth: y − z / distance
+    const GpuShadow& gpu = maps_[size_t(slot)].gpu;  // perspective depth: y − z / distance
+    view.draw(cmd, maps_[size_t(slot)].depth, glm::vec2(gpu.params.y, gpu.params.z), extent);
 }
 
 // Change tracking: everything a map depends on, as numbers. The light's placement and the

@@ -72,7 +72,7 @@ private:
         GpuShadow gpu{};
     };
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
-    std::vector<std::string> layout_of(const Lighting& lighting) const;  // what matches() compares
+    std::vector<int> layout_of(const Lighting& lighting) const;  // what matches() compares
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting, bool translucent,
@@ -95,6 +95,6 @@ private:
     lab::Handle<VkSampler> nearest_sampler_, compare_sampler_;
     std::vector<Map> maps_;          // one per shadow slot, in slot order
     Map stand_in_2d_, stand_in_cube_;  // 1×1, cleared: what unused slots' descriptors point at
-    std::vector<std::string> layout_;  // layout_of() the lighting the maps were made for
+    std::vector<int> layout_;  // layout_of() the lighting the maps were made for
     int renders_ = 0;
 };
