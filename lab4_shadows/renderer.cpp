@@ -38,15 +38,12 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
       shadow_view_(vk, target.render_pass(), 6 * kMaxShadowLights) {
     // Geometry: upload each distinct mesh once, remember what to draw.
     lab::MeshLibrary library;  // reads each model file once
-    std::map<std::string, Box> bounds;  // lab 4: [mesh] its box in model space
-    std::vector<Caster> casters;        // lab 4: what the shadow maps draw
+    std::vector<Caster> casters;  // lab 4: what the shadow maps draw
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
-            const lab::Mesh mesh = library.mesh(object);
-            bounds[key] = lab::mesh_bounds(mesh);
-            it = meshes_.emplace(key, lab::upload_mesh(vk, mesh)).first;
+            it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
         }
         const lab::MaterialDesc& material = scene.materials.at(object.material);
         items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
@@ -55,7 +52,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         lit.model = items_.back().constants.model;
         normal_matrix(lit.model, lit.normal_matrix);
         lit.material = uint32_t(lighting.material_index(object.material));
-        const Box box = lab::transformed(bounds[key], glm::dmat4(lit.model));  // world space
+        const Box box = lab::transformed(it->second.bounds, glm::dmat4(lit.model));  // world space
         items_.back().centre = glm::vec3(0.5 * (box.lo + box.hi));
         casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows});
     }

@@ -33,19 +33,19 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
     const VkFormatFeatureFlags depth_use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     depth_format_ = lab::format_supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
-    linear_filter_ = lab::format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
+    const bool linear = lab::format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
     const VkFormatFeatureFlags blend_use = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     transmittance_format_ = lab::format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
 
     depth_pass_ = lab::make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
     translucent_pass_ = lab::make_offscreen_pass(vk, transmittance_format_, depth_format_);
     nearest_sampler_ = lab::make_depth_sampler(vk, false, false);
-    compare_sampler_ = lab::make_depth_sampler(vk, linear_filter_, true);
+    compare_sampler_ = lab::make_depth_sampler(vk, linear, true);
 
     // Opaque casters: depth only — position-only vertex input, no fragment shader, no colour.
-    vertex_shader_ = lab::load_shader(vk, shader_dir, "shadow.vert");
+    const lab::Handle<VkShaderModule> vertex_shader = lab::load_shader(vk, shader_dir, "shadow.vert");
     opaque_ = lab::PipelineBuilder()
-                  .shaders(vertex_shader_, VK_NULL_HANDLE)
+                  .shaders(vertex_shader, VK_NULL_HANDLE)
                   .vertex_attributes(lab::kPosition)
                   .push_constants(kBoth, sizeof(ShadowConstants))
                   .cull(VK_CULL_MODE_NONE)  // a plane casts from either side
@@ -53,7 +53,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                   .dynamic_depth_bias()
                   .build(vk, depth_pass_);
     if (translucent_) {
-        translucent_shader_ = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
+        const lab::Handle<VkShaderModule> translucent_shader = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
         for (int cube = 0; cube < 2; ++cube) {
             // Front faces as the light sees them; a cube face's view mirrors the winding.
             const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
@@ -64,7 +64,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                                                         VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
                                                         VK_COLOR_COMPONENT_R_BIT};
             lab::PipelineBuilder builder;
-            builder.shaders(vertex_shader_, translucent_shader_)
+            builder.shaders(vertex_shader, translucent_shader)
                 .vertex_attributes(lab::kPosition)
                 .push_constants(kBoth, sizeof(ShadowConstants))
                 .cull(back);

@@ -85,10 +85,8 @@ private:
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     VkFormat transmittance_format_ = VK_FORMAT_R32G32_SFLOAT;
     bool translucent_ = false;  // some caster is translucent
-    bool linear_filter_ = true; // the depth format filters linearly (else bilinear falls back to nearest)
     lab::Handle<VkRenderPass> depth_pass_;        // depth only
     lab::Handle<VkRenderPass> translucent_pass_;  // transmittance + scratch depth
-    lab::Handle<VkShaderModule> vertex_shader_, translucent_shader_;
     lab::PipelineBuilder::Result opaque_;                    // depth only, depth bias
     std::array<lab::PipelineBuilder::Result, 2> nearest_;    // [cube]: g = nearest translucent depth
     std::array<lab::PipelineBuilder::Result, 2> multiply_;   // [cube]: r ×= 1 − α
