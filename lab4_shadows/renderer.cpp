@@ -101,7 +101,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lit_fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
     textured_fragment_shader_ = lab::load_shader(vk, shader_dir, "textured.frag");
     load_textures(lighting);
-    lit_pipeline(lit_variant(lighting));  // the scene's own variant, built up front
+    lit_pipeline(variant_of(lighting));  // the scene's own variant, built up front
 }
 
 // Each map image is loaded and uploaded once, however many materials use it, with a mip chain
@@ -179,7 +179,7 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
 // Lab 3: textured_only = draw only the objects with maps (the others went the ambient-only way).
 void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, bool textured_only,
                         const std::vector<const DrawItem*>& items, Pass pass) {
-    Variant variant = lit_variant(lighting);
+    Variant variant = variant_of(lighting);
     VkPipeline bound_pipeline = VK_NULL_HANDLE;
     VkDescriptorSet bound_maps = VK_NULL_HANDLE;
     const lab::GpuMesh* bound = nullptr;
@@ -210,14 +210,6 @@ void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& ligh
                            sizeof(LitConstants), &item.lit);
         vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
     }
-}
-
-// Lab 4: variant_of() and whether the shadow maps carry transmittance (translucent casters).
-Variant Renderer::lit_variant(const Lighting& lighting) const {
-    Variant variant = variant_of(lighting);
-    for (int s = 0; s < kMaxShadowLights; ++s)
-        variant[kShadowConstants + 4 * s + 3] = variant[kShadowConstants + 4 * s] != 0 && shadow_maps_->translucent();
-    return variant;
 }
 
 // The lighting model, the shading and the number of lights of each type are specialization

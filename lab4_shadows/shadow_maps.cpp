@@ -18,16 +18,25 @@ constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAG
 constexpr double kMaxTexels = 268435456.0;
 
 bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
+
+// What the images depend on: each shadow-casting light's index, type and resolution; whether
+// the casters are translucent (the last number).
+std::vector<int> layout_of(const Lighting& lighting) {
+    std::vector<int> layout;
+    const std::vector<int> slots = lighting.shadow_slots();
+    for (size_t i = 0; i < lighting.lights.size(); ++i)
+        if (slots[i] >= 0) layout.insert(layout.end(), {int(i), int(lighting.lights[i].type), lighting.lights[i].shadow.resolution});
+    layout.push_back(lighting.translucent_casters);
+    return layout;
+}
 }  // namespace
 
 ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects, const Lighting& lighting,
                        const std::string& shader_dir)
-    : vk_(vk), objects_(std::move(objects)) {
+    : vk_(vk), objects_(std::move(objects)), translucent_(lighting.translucent_casters) {
     for (const Caster& c : objects_) {
         receiver_boxes_.push_back(c.box);
-        if (!c.casts) continue;
-        caster_boxes_.push_back(c.box);
-        translucent_ = translucent_ || translucent_material(lighting, c.material);
+        if (c.casts) caster_boxes_.push_back(c.box);
     }
     // 32-bit float depth where the device samples it (precision for perspective maps), else 16-bit.
     // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
@@ -145,18 +154,6 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
         }
         lab::write_image_descriptors(vk_, set, binding, infos);
     }
-}
-
-// What the images depend on: each shadow-casting light's index, type and resolution; whether
-// some caster is translucent (the last number).
-std::vector<int> ShadowMaps::layout_of(const Lighting& lighting) const {
-    std::vector<int> layout;
-    const std::vector<int> slots = lighting.shadow_slots();
-    for (size_t i = 0; i < lighting.lights.size(); ++i)
-        if (slots[i] >= 0) layout.insert(layout.end(), {int(i), int(lighting.lights[i].type), lighting.lights[i].shadow.resolution});
-    layout.push_back(std::any_of(objects_.begin(), objects_.end(),
-                                 [&](const Caster& c) { return c.casts && translucent_material(lighting, c.material); }));
-    return layout;
 }
 
 bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }

@@ -55,7 +55,6 @@ public:
     // True when these maps still fit `lighting` (the same lights cast shadows, with the same
     // resolutions); if not, the renderer is rebuilt (new images).
     bool matches(const Lighting& lighting) const;
-    bool translucent() const { return translucent_; }  // the maps carry transmittance
     int maps() const { return int(maps_.size()); }
     int renders() const { return renders_; }  // maps rendered so far (a cube counts once)
     // The shadow-map view (UI only): slot's map (a cube: its six faces) drawn by `view`; none for no map.
@@ -72,7 +71,6 @@ private:
         GpuShadow gpu{};
     };
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
-    std::vector<int> layout_of(const Lighting& lighting) const;  // what matches() compares
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting, bool translucent,
