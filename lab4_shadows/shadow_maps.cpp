@@ -1,6 +1,5 @@
 #include "shadow_maps.h"
 
-#include "offscreen.h"
 #include "shader.h"
 
 #include <algorithm>

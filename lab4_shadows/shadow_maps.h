@@ -6,13 +6,10 @@
 // volume, changed: a static scene renders its maps once.
 #pragma once
 
-#include "buffer.h"
-#include "depth_view.h"
+#include "depth_view.h"  // and offscreen.h, pipeline_builder.h
 #include "gpu_mesh.h"
 #include "light_frustum.h"
 #include "lights.h"
-#include "offscreen.h"
-#include "pipeline_builder.h"
 
 #include <glm/glm.hpp>
 
