@@ -85,10 +85,51 @@ Handle<VkFramebuffer> make_square_framebuffer(const VulkanContext& vk, VkRenderP
     return Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
 }
 
-void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color) {
+LayeredTarget& LayeredTarget::operator=(LayeredTarget&& other) noexcept {
+    if (this != &other) {
+        framebuffers = std::move(other.framebuffers);  // the old ones are destroyed before their views
+        layer_views = std::move(other.layer_views);
+        image = std::move(other.image);
+        pass = other.pass;
+        size = other.size;
+        color = other.color;
+    }
+    return *this;
+}
+
+void LayeredTarget::begin(VkCommandBuffer cmd, uint32_t i, float depth) const {
+    begin_offscreen_pass(cmd, pass, framebuffers[i], size, color, depth);
+}
+
+void LayeredTarget::clear(VkCommandBuffer cmd) const {
+    for (uint32_t i = 0; i < layers(); ++i) {
+        begin(cmd, i);
+        vkCmdEndRenderPass(cmd);
+    }
+}
+
+LayeredTarget create_layered_target(const VulkanContext& vk, VkRenderPass pass, uint32_t size, bool cube, VkFormat format,
+                                    VkImageUsageFlags usage, VkImageAspectFlags aspect,
+                                    const std::vector<VkImageView>& more) {
+    LayeredTarget t;
+    t.pass = pass;
+    t.size = size;
+    t.color = (aspect & VK_IMAGE_ASPECT_COLOR_BIT) != 0;
+    t.image = cube ? create_image_cube(vk, size, format, usage, aspect) : create_image_2d(vk, {size, size}, format, usage, aspect);
+    for (uint32_t layer = 0; layer < (cube ? 6u : 1u); ++layer) {
+        if (cube) t.layer_views.push_back(create_layer_view(vk, t.image.image, format, aspect, layer));
+        std::vector<VkImageView> views = {t.layer(layer)};
+        views.insert(views.end(), more.begin(), more.end());
+        t.framebuffers.push_back(make_square_framebuffer(vk, pass, views, size));
+    }
+    return t;
+}
+
+void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color,
+                          float depth) {
     VkClearValue clears[2];
     clears[0].color = {{1.0f, 1.0f, 0.0f, 0.0f}};  // transmittance 1, nearest translucent depth 1
-    clears[color ? 1 : 0].depthStencil = {1.0f, 0};
+    clears[color ? 1 : 0].depthStencil = {depth, 0};
     VkRenderPassBeginInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     info.renderPass = pass;
     info.framebuffer = framebuffer;

@@ -1,7 +1,9 @@
 // offscreen.h — render passes into images the lab samples afterwards (lab 4's shadow maps):
-// the render pass, framebuffers, beginning a pass, samplers for depth maps, format checks.
+// the render pass, the images with a framebuffer per layer, beginning a pass, samplers for depth
+// maps, format checks.
 #pragma once
 
+#include "buffer.h"
 #include "vk_context.h"
 #include "vk_handle.h"
 
@@ -23,9 +25,37 @@ Handle<VkRenderPass> make_offscreen_pass(const VulkanContext& vk, VkFormat color
 Handle<VkFramebuffer> make_square_framebuffer(const VulkanContext& vk, VkRenderPass pass,
                                               const std::vector<VkImageView>& views, uint32_t size);
 
-// Begins `pass` on `framebuffer` (size²): colour (if any) cleared to (1, 1, 0, 0), depth to 1;
-// viewport and scissor cover the whole square.
-void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color);
+// A square image to render into and sample afterwards: 2D, or a cube map (six layers) with a 2D
+// view of each face to render into; one framebuffer of `pass` per layer.
+struct LayeredTarget {
+    Image image;                                      // its view (2D or cube) is what shaders sample
+    std::vector<Handle<VkImageView>> layer_views;     // a cube's faces (2D: none, the image's view)
+    std::vector<Handle<VkFramebuffer>> framebuffers;  // [layer]
+    VkRenderPass pass = VK_NULL_HANDLE;
+    uint32_t size = 0;   // size² texels
+    bool color = false;  // a colour image (else depth)
+
+    LayeredTarget() = default;
+    LayeredTarget(LayeredTarget&&) noexcept = default;
+    LayeredTarget& operator=(LayeredTarget&& other) noexcept;  // framebuffers, views, then the image
+    uint32_t layers() const { return uint32_t(framebuffers.size()); }
+    VkImageView layer(uint32_t i) const { return layer_views.empty() ? image.view.get() : layer_views[i].get(); }
+    // begin_offscreen_pass() on layer `i`: cleared, viewport and scissor set.
+    void begin(VkCommandBuffer cmd, uint32_t i, float depth = 1.0f) const;
+    // Every layer cleared (a pass begun and ended on each), e.g. before anything samples it.
+    void clear(VkCommandBuffer cmd) const;
+};
+
+// `size`² texels of `format`, 1 layer or 6 (`cube`); each framebuffer's attachments are the layer,
+// then `more` (e.g. a depth buffer the layers share: they are rendered one after the other).
+LayeredTarget create_layered_target(const VulkanContext& vk, VkRenderPass pass, uint32_t size, bool cube, VkFormat format,
+                                    VkImageUsageFlags usage, VkImageAspectFlags aspect,
+                                    const std::vector<VkImageView>& more = {});
+
+// Begins `pass` on `framebuffer` (size²): colour (if any) cleared to (1, 1, 0, 0), depth to
+// `depth` (1: nothing there); viewport and scissor cover the whole square.
+void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color,
+                          float depth = 1.0f);
 
 // A sampler for depth maps: nearest or linear, optionally comparing (compare op LESS_OR_EQUAL:
 // 1 where the reference ≤ the stored depth); outside the map it reads white (depth 1).

@@ -221,13 +221,17 @@ void write_buffer_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint3
 
 void write_image_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding, VkSampler sampler,
                             VkImageView view) {
-    VkDescriptorImageInfo image_info{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    write_image_descriptors(vk, set, binding, {{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
+}
+
+void write_image_descriptors(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding,
+                             const std::vector<VkDescriptorImageInfo>& images) {
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set;
     write.dstBinding = binding;
-    write.descriptorCount = 1;
+    write.descriptorCount = uint32_t(images.size());
     write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    write.pImageInfo = &image_info;
+    write.pImageInfo = images.data();
     vkUpdateDescriptorSets(vk.device(), 1, &write, 0, nullptr);
 }
 

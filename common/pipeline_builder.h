@@ -88,5 +88,9 @@ void write_buffer_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint3
 // Points `binding` (a combined image sampler) of `set` at `view` read through `sampler`.
 void write_image_descriptor(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding, VkSampler sampler,
                             VkImageView view);
+// Points `binding` (an array of combined image samplers) of `set`, from element 0 on, at `images`
+// (each with its sampler and the layout it is read in).
+void write_image_descriptors(const VulkanContext& vk, VkDescriptorSet set, uint32_t binding,
+                             const std::vector<VkDescriptorImageInfo>& images);
 
 }  // namespace lab

@@ -17,16 +17,6 @@ glm::dvec3 unit_or_down(const glm::dvec3& v) {
     return len > 1e-12 ? v / len : glm::dvec3(0.0, -1.0, 0.0);
 }
 
-// The box's eight corners through `m` (an affine view matrix); min / max of each coordinate.
-void extent(const glm::dmat4& m, const Box& box, glm::dvec3& lo, glm::dvec3& hi) {
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner(i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z);
-        const glm::dvec3 p(m * glm::dvec4(corner, 1.0));
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-}
-
 // Vulkan's framebuffer Y points down: flip, as the camera does, so that triangles keep their
 // winding (counter-clockwise = front) in the 2D maps.
 glm::dmat4 flip_y(glm::dmat4 p) {
@@ -56,22 +46,22 @@ glm::dvec3 up_for(const glm::dvec3& direction) {
 
 LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>& casters, const std::vector<Box>& receivers) {
     const glm::dvec3 d = unit_or_down(direction);
-    Box all{glm::dvec3(kInf), glm::dvec3(-kInf)};
-    for (const Box& b : receivers) all = {glm::min(all.lo, b.lo), glm::max(all.hi, b.hi)};
+    Box all = Box::empty();
+    for (const Box& b : receivers) all.add(b);
     if (receivers.empty()) all = {glm::dvec3(-1.0), glm::dvec3(1.0)};
     const glm::dvec3 centre = 0.5 * (all.lo + all.hi);
     const glm::dmat4 view = glm::lookAtRH(centre - d, centre, up_for(d));  // looks along −z = d
 
     // Light space: x, y across the beam, z towards the light.
-    glm::dvec3 clo(kInf), chi(-kInf), rlo(kInf), rhi(-kInf);
-    for (const Box& b : casters) extent(view, b, clo, chi);
-    for (const Box& b : receivers) extent(view, b, rlo, rhi);
-    if (casters.empty()) clo = rlo, chi = rhi;
+    Box c = Box::empty(), r = Box::empty();
+    for (const Box& b : casters) c.add(lab::transformed(b, view));
+    for (const Box& b : receivers) r.add(lab::transformed(b, view));
+    if (casters.empty()) c = r;
     // Across the beam: only where a caster can shadow a receiver (both boxes overlap); a receiver
     // outside is lit anyway (outside the map = lit). Along it: from the caster nearest the light
     // to the farthest receiver.
-    glm::dvec3 lo(std::max(clo.x, rlo.x), std::max(clo.y, rlo.y), std::min(rlo.z, clo.z));
-    glm::dvec3 hi(std::min(chi.x, rhi.x), std::min(chi.y, rhi.y), chi.z);
+    glm::dvec3 lo(std::max(c.lo.x, r.lo.x), std::max(c.lo.y, r.lo.y), std::min(r.lo.z, c.lo.z));
+    glm::dvec3 hi(std::min(c.hi.x, r.hi.x), std::min(c.hi.y, r.hi.y), c.hi.z);
     const double size = std::max({glm::length(all.hi - all.lo), 1e-6});
     for (int i = 0; i < 3; ++i) {
         if (!(hi[i] > lo[i])) hi[i] = lo[i] = 0.5 * (lo[i] + hi[i]);  // empty: no caster over a receiver
@@ -95,14 +85,10 @@ LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, d
     std::vector<Box> in_cone;
     for (const Box& b : casters)
         if (in_spot_cone(b, position, d, outer_deg)) in_cone.push_back(b);
-    const auto depth_range = [&](const Box& b) {  // the box's depth along the axis: −z in view space
-        glm::dvec3 lo(kInf), hi(-kInf);
-        extent(view, b, lo, hi);
-        return glm::dvec2(-hi.z, -lo.z);
-    };
+    // A box's depth along the axis: −z in view space.
     LightFrustum f;
-    fit_depth(in_cone, receivers, [&](const Box& b) { return depth_range(b).x; },
-              [&](const Box& b) { return depth_range(b).y; }, f.near_plane, f.far_plane);
+    fit_depth(in_cone, receivers, [&](const Box& b) { return -lab::transformed(b, view).hi.z; },
+              [&](const Box& b) { return -lab::transformed(b, view).lo.z; }, f.near_plane, f.far_plane);
     f.view_projection = flip_y(glm::perspectiveRH_ZO(fov, 1.0, f.near_plane, f.far_plane)) * view;
     f.texel = 2.0 * std::tan(fov / 2.0);
     return f;

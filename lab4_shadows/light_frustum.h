@@ -6,16 +6,14 @@
 // Near and far planes are fitted to the objects too: depth precision is spent between them.
 #pragma once
 
+#include "bounds.h"
+
 #include <glm/glm.hpp>
 
 #include <array>
 #include <vector>
 
-// An axis-aligned bounding box in world space.
-struct Box {
-    glm::dvec3 lo{0.0};
-    glm::dvec3 hi{0.0};
-};
+using lab::Box;  // an axis-aligned bounding box in world space
 
 // A view matrix's up vector for a camera looking along `direction`: world +Y, unless the
 // direction is (nearly) ±Y itself, where cross(direction, up) would vanish: then +Z.

@@ -4,9 +4,9 @@
 // (directional: fitted orthographic, spot: perspective, point: cube) before the camera's
 // pass, which reads it with PCF; translucent objects blend over the others and let
 // 1 − opacity of the light through. The "Shadows" panel edits it all live, shows a light's
-// map and animates the lights (LAB_ANIMATE_LIGHTS=1 does that headless, for --benchmark).
-// Everything else (Vulkan, window, UI, scene file, image loading, texture upload, samplers)
-// comes from common/.
+// map and animates the lights (LAB_ANIMATE_LIGHTS=1 does that headless, for
+// --benchmark). Everything else (Vulkan, window, UI, scene file, image
+// loading, texture upload, samplers) comes from common/.
 //
 // Controls: W/S forward/back, A/D strafe, Space/Shift up/down (world Y),
 // left-drag rotates (Look-At: orbits the target), wheel changes the distance

@@ -30,27 +30,12 @@ void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
     if (largest > 0.0) n /= largest;
     for (int c = 0; c < 3; ++c) columns[c] = glm::vec4(glm::vec3(n[c]), 0.0f);
 }
-
-// Lab 4: a mesh's bounding box in model space, and that box moved to world space (its corners).
-Box mesh_bounds(const lab::Mesh& mesh) {
-    Box box{glm::dvec3(1e300), glm::dvec3(-1e300)};
-    for (const lab::Vertex& v : mesh.vertices) box = {glm::min(box.lo, glm::dvec3(v.position)), glm::max(box.hi, glm::dvec3(v.position))};
-    return mesh.vertices.empty() ? Box{} : box;
-}
-Box world_bounds(const Box& local, const glm::mat4& model) {
-    Box box{glm::dvec3(1e300), glm::dvec3(-1e300)};
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 p(i & 1 ? local.hi.x : local.lo.x, i & 2 ? local.hi.y : local.lo.y, i & 4 ? local.hi.z : local.lo.z);
-        const glm::dvec3 w(glm::dmat4(model) * glm::dvec4(p, 1.0));
-        box = {glm::min(box.lo, w), glm::max(box.hi, w)};
-    }
-    return box;
-}
 }  // namespace
 
 Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
                    const Lighting& lighting, const std::string& shader_dir)
-    : vk_(vk), render_pass_(target.render_pass()), samplers_(vk) {
+    : vk_(vk), render_pass_(target.render_pass()), samplers_(vk),
+      shadow_view_(vk, target.render_pass(), 6 * kMaxShadowLights) {
     // Geometry: upload each distinct mesh once, remember what to draw.
     lab::MeshLibrary library;  // reads each model file once
     std::map<std::string, Box> bounds;  // lab 4: [mesh] its box in model space
@@ -60,7 +45,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
             const lab::Mesh mesh = library.mesh(object);
-            bounds[key] = mesh_bounds(mesh);
+            bounds[key] = lab::mesh_bounds(mesh);
             it = meshes_.emplace(key, lab::upload_mesh(vk, mesh)).first;
         }
         const lab::MaterialDesc& material = scene.materials.at(object.material);
@@ -70,7 +55,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         lit.model = items_.back().constants.model;
         normal_matrix(lit.model, lit.normal_matrix);
         lit.material = uint32_t(lighting.material_index(object.material));
-        const Box box = world_bounds(bounds[key], lit.model);
+        const Box box = lab::transformed(bounds[key], glm::dmat4(lit.model));  // world space
         items_.back().centre = glm::vec3(0.5 * (box.lo + box.hi));
         casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows});
     }
@@ -118,16 +103,6 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lit_vertex_shader_ = lab::load_shader(vk, shader_dir, "lit.vert");
     lit_fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
     textured_fragment_shader_ = lab::load_shader(vk, shader_dir, "textured.frag");
-    view_vertex_shader_ = lab::load_shader(vk, shader_dir, "map_view.vert");
-    view_fragment_shader_ = lab::load_shader(vk, shader_dir, "map_view.frag");
-    view_pipeline_ = lab::PipelineBuilder()
-                         .shaders(view_vertex_shader_, view_fragment_shader_)
-                         .vertex_attributes(0)
-                         .descriptor_set(set_layout_)
-                         .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 2 * sizeof(glm::vec4))
-                         .cull(VK_CULL_MODE_NONE)
-                         .depth(false, false)
-                         .build(vk, target.render_pass());
     load_textures(lighting);
     lit_pipeline(lit_variant(lighting));  // the scene's own variant, built up front
 }
@@ -200,7 +175,8 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     for (const DrawItem* item : translucent_)
         for (Pass pass : {Pass::BackFaces, Pass::FrontFaces}) draw_lit(cmd, frame.slot, lighting, false, {item}, pass);
     if (lighting.options.markers) draw_markers(cmd, frame.slot, lighting);
-    draw_shadow_view(cmd, frame.slot, lighting, frame.extent);
+    if (lighting.shadow_view >= 0 && lighting.shadow_view < int(lighting.lights.size()))  // lab 4: the shadow-map view
+        shadow_maps_->draw_view(shadow_view_, cmd, lighting.shadow_slots()[size_t(lighting.shadow_view)], frame.extent);
 }
 
 // Lab 3: textured_only = draw only the objects with maps (the others went the ambient-only way).
@@ -268,31 +244,6 @@ const lab::PipelineBuilder::Result& Renderer::lit_pipeline(const Variant& varian
     if (pass != Pass::Opaque)  // lab 4: blended over what is behind (α, 1 − α); depth tested, not written
         builder.cull(pass == Pass::BackFaces ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT).alpha_blend(true).depth(true, false);
     return lit_pipelines_[{variant, pass}] = builder.build(vk_, render_pass_);
-}
-
-// Lab 4: the shadow-map view: the selected light's map at the bottom, between the panels (a cube
-// map: its six faces, +X −X +Y above −Y +Z −Z), near black, far white.
-void Renderer::draw_shadow_view(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, VkExtent2D extent) {
-    if (lighting.shadow_view < 0 || lighting.shadow_view >= int(lighting.lights.size())) return;
-    const int map = lighting.shadow_slots()[size_t(lighting.shadow_view)];
-    const int kind = shadow_maps_->kind(map);
-    if (kind == 0) return;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view_pipeline_.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view_pipeline_.layout, 0, 1, &sets_[slot], 0, nullptr);
-    const int faces = kind == 2 ? 6 : 1, columns = kind == 2 ? 3 : 1;
-    const float height = kind == 2 ? 0.42f : 0.8f;  // one square, in NDC (2 = the whole window)
-    const float width = height * float(extent.height) / float(std::max(extent.width, 1u));
-    for (int face = 0; face < faces; ++face) {
-        const float x0 = (float(face % columns) - 0.5f * float(columns)) * (width + 0.01f);
-        const float y1 = 0.98f - float(faces / columns - 1 - face / columns) * (height + 0.01f);
-        const struct {
-            glm::vec4 rect;
-            glm::ivec4 which;
-        } constants{{x0, y1 - height, x0 + width, y1}, {map, kind == 2 ? face : -1, shadow_maps_->perspective(map), 0}};
-        vkCmdPushConstants(cmd, view_pipeline_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof constants, &constants);
-        vkCmdDraw(cmd, 6, 1, 0, 0);
-    }
 }
 
 // Light markers, drawn unlit in the light's colour: a cube at a point light, a cone along a

@@ -72,7 +72,6 @@ private:
     // The lit pipeline for the current specialization constants (built on first use, then cached).
     const lab::PipelineBuilder::Result& lit_pipeline(const Variant& variant, Pass pass = Pass::Opaque);
     Variant lit_variant(const Lighting& lighting) const;
-    void draw_shadow_view(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, VkExtent2D extent);
     // lab 1's unlit pipeline draws the light markers, and whole scenes without lights.
     void draw_markers(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
     void draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
@@ -108,7 +107,5 @@ private:
     std::unique_ptr<ShadowMaps> shadow_maps_;
     std::vector<lab::Buffer> shadows_;  // [frame slot] GpuShadows
     std::vector<const DrawItem*> opaque_, translucent_;  // this frame's draw order
-    lab::Handle<VkShaderModule> view_vertex_shader_;
-    lab::Handle<VkShaderModule> view_fragment_shader_;
-    lab::PipelineBuilder::Result view_pipeline_;
+    lab::DepthView shadow_view_;  // UI only: common/depth_view.h
 };

@@ -59,15 +59,10 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
             const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
             VkPipelineColorBlendAttachmentState g{};  // the nearest face's depth into g
             g.colorWriteMask = VK_COLOR_COMPONENT_G_BIT;
-            VkPipelineColorBlendAttachmentState r{};  // r = r · (1 − α): dst·src
-            r.blendEnable = VK_TRUE;
-            r.srcColorBlendFactor = VK_BLEND_FACTOR_ZERO;
-            r.dstColorBlendFactor = VK_BLEND_FACTOR_SRC_COLOR;
-            r.colorBlendOp = VK_BLEND_OP_ADD;
-            r.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
-            r.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-            r.alphaBlendOp = VK_BLEND_OP_ADD;
-            r.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;
+            // r = r · (1 − α): src · 0 + dst · src (alpha: kept), into r only.
+            const VkPipelineColorBlendAttachmentState r{VK_TRUE, VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_SRC_COLOR, VK_BLEND_OP_ADD,
+                                                        VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
+                                                        VK_COLOR_COMPONENT_R_BIT};
             lab::PipelineBuilder builder;
             builder.shaders(vertex_shader_, translucent_shader_)
                 .vertex_attributes(lab::kPosition)
@@ -83,21 +78,15 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
         if (slots[i] < 0) continue;
         const bool cube = lighting.lights[i].type == lab::LightDesc::Type::Point;
         maps_.push_back(make_map(int(i), cube, clamp_resolution(lighting.lights[i].shadow.resolution, cube), translucent_));
-        layout_.push_back(std::to_string(i) + ":" + std::to_string(int(lighting.lights[i].type)) + ":" +
-                          std::to_string(lighting.lights[i].shadow.resolution));
     }
-    layout_.push_back(translucent_ ? "translucent" : "opaque");
+    layout_ = layout_of(lighting);
     // Unused slots read 1×1 maps that say "lit"; cleared once, here, into the layouts they are read in.
     stand_in_2d_ = make_map(-1, false, 1, true);
     stand_in_cube_ = make_map(-1, true, 1, true);
     vk.run_once([&](VkCommandBuffer cmd) {
-        for (Map* m : {&stand_in_2d_, &stand_in_cube_}) {
-            for (size_t f = 0; f < m->framebuffers.size(); ++f) {
-                lab::begin_offscreen_pass(cmd, depth_pass_, m->framebuffers[f], 1, false);
-                vkCmdEndRenderPass(cmd);
-                lab::begin_offscreen_pass(cmd, translucent_pass_, m->translucent_framebuffers[f], 1, true);
-                vkCmdEndRenderPass(cmd);
-            }
+        for (const Map* m : {&stand_in_2d_, &stand_in_cube_}) {
+            m->depth.clear(cmd);
+            m->transmittance.clear(cmd);
         }
     });
 }
@@ -118,37 +107,15 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
     Map m;
     m.light = light;
     m.cube = cube;
-    m.resolution = resolution;
     const VkImageUsageFlags sampled_depth = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     const VkImageUsageFlags sampled_color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    const uint32_t faces = cube ? 6 : 1;
-    m.depth = cube ? lab::create_image_cube(vk_, resolution, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT)
-                   : lab::create_image_2d(vk_, {resolution, resolution}, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT);
-    if (translucent) {
-        m.transmittance = cube ? lab::create_image_cube(vk_, resolution, transmittance_format_, sampled_color, VK_IMAGE_ASPECT_COLOR_BIT)
-                               : lab::create_image_2d(vk_, {resolution, resolution}, transmittance_format_, sampled_color,
-                                                      VK_IMAGE_ASPECT_COLOR_BIT);
-        // One scratch depth serves every face (the faces are rendered one after the other).
-        m.scratch_depth = lab::create_image_2d(vk_, {resolution, resolution}, depth_format_,
-                                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-    }
-    for (uint32_t f = 0; f < faces; ++f) {
-        VkImageView depth_view = m.depth.view;
-        if (cube) {
-            m.face_views.push_back(lab::create_layer_view(vk_, m.depth.image, depth_format_, VK_IMAGE_ASPECT_DEPTH_BIT, f));
-            depth_view = m.face_views.back();
-        }
-        m.framebuffers.push_back(lab::make_square_framebuffer(vk_, depth_pass_, {depth_view}, resolution));
-        if (!translucent) continue;
-        VkImageView color_view = m.transmittance.view;
-        if (cube) {
-            m.transmittance_views.push_back(
-                lab::create_layer_view(vk_, m.transmittance.image, transmittance_format_, VK_IMAGE_ASPECT_COLOR_BIT, f));
-            color_view = m.transmittance_views.back();
-        }
-        m.translucent_framebuffers.push_back(
-            lab::make_square_framebuffer(vk_, translucent_pass_, {color_view, VkImageView(m.scratch_depth.view)}, resolution));
-    }
+    m.depth = lab::create_layered_target(vk_, depth_pass_, resolution, cube, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT);
+    if (!translucent) return m;
+    // One scratch depth serves every face (the faces are rendered one after the other).
+    m.scratch_depth = lab::create_image_2d(vk_, {resolution, resolution}, depth_format_,
+                                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    m.transmittance = lab::create_layered_target(vk_, translucent_pass_, resolution, cube, transmittance_format_, sampled_color,
+                                                 VK_IMAGE_ASPECT_COLOR_BIT, {m.scratch_depth.view});
     return m;
 }
 
@@ -166,32 +133,23 @@ std::vector<lab::DescriptorBinding> ShadowMaps::bindings() {
 void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const {
     lab::write_buffer_descriptor(vk_, set, 3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms, sizeof(GpuShadows));
     const VkImageLayout depth = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, color = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    std::vector<VkDescriptorImageInfo> infos;  // [binding 4..9][slot]
-    for (int binding = 4; binding <= 9; ++binding) {
+    for (uint32_t binding = 4; binding <= 9; ++binding) {
         const bool cube = binding == 6 || binding == 7 || binding == 9;
         const Map& stand_in = cube ? stand_in_cube_ : stand_in_2d_;
+        std::vector<VkDescriptorImageInfo> infos;  // [slot]
         for (int slot = 0; slot < kMaxShadowLights; ++slot) {
             const Map* m = slot < int(maps_.size()) && maps_[slot].cube == cube ? &maps_[slot] : &stand_in;
             if (binding >= 8 && !translucent_) m = &stand_in;
             const VkSampler sampler = binding == 5 || binding == 7 ? compare_sampler_.get() : nearest_sampler_.get();
-            infos.push_back(binding >= 8 ? VkDescriptorImageInfo{sampler, m->transmittance.view, color}
-                                         : VkDescriptorImageInfo{sampler, m->depth.view, depth});
+            infos.push_back(binding >= 8 ? VkDescriptorImageInfo{sampler, m->transmittance.image.view, color}
+                                         : VkDescriptorImageInfo{sampler, m->depth.image.view, depth});
         }
+        lab::write_image_descriptors(vk_, set, binding, infos);
     }
-    std::vector<VkWriteDescriptorSet> writes;
-    for (uint32_t binding = 4; binding <= 9; ++binding) {
-        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        write.dstSet = set;
-        write.dstBinding = binding;
-        write.descriptorCount = kMaxShadowLights;
-        write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        write.pImageInfo = &infos[(binding - 4) * kMaxShadowLights];
-        writes.push_back(write);
-    }
-    vkUpdateDescriptorSets(vk_.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
-bool ShadowMaps::matches(const Lighting& lighting) const {
+// What the images depend on: each shadow-casting light's type and resolution, translucent casters.
+std::vector<std::string> ShadowMaps::layout_of(const Lighting& lighting) const {
     std::vector<std::string> layout;
     const std::vector<int> slots = lighting.shadow_slots();
     bool translucent = false;
@@ -201,15 +159,18 @@ bool ShadowMaps::matches(const Lighting& lighting) const {
             layout.push_back(std::to_string(i) + ":" + std::to_string(int(lighting.lights[i].type)) + ":" +
                              std::to_string(lighting.lights[i].shadow.resolution));
     layout.push_back(translucent ? "translucent" : "opaque");
-    return layout == layout_;
+    return layout;
 }
 
-int ShadowMaps::kind(int slot) const {
-    if (slot < 0 || slot >= int(maps_.size())) return 0;
-    return maps_[slot].cube ? 2 : 1;
-}
+bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }
 
-bool ShadowMaps::perspective(int slot) const { return kind(slot) != 0 && maps_[slot].perspective; }
+void ShadowMaps::draw_view(lab::DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
+    if (slot < 0 || slot >= int(maps_.size())) return;
+    const Map& m = maps_[size_t(slot)];
+    std::vector<VkImageView> layers;
+    for (uint32_t face = 0; face < m.depth.layers(); ++face) layers.push_back(m.depth.layer(face));
+    view.draw(cmd, layers, glm::vec2(m.gpu.params.y, m.gpu.params.z), extent);  // perspective depth: y − z / distance
+}
 
 // Change tracking: everything a map depends on, as numbers. The light's placement and the
 // shadow pass's settings, then each caster the light can reach: its transform and opacity.
@@ -243,7 +204,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
         }
         // Only the lookup's numbers: the map still holds what they describe.
         GpuShadow gpu = map.gpu;
-        gpu.params.x *= light.shadow.normal_offset / float(map.resolution);
+        gpu.params.x *= light.shadow.normal_offset / float(map.depth.size);
         out->slot[slot] = gpu;
     }
 }
@@ -276,19 +237,18 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         case lab::LightDesc::Type::Spot: f = fit_spot(position, direction, light.outer_deg, caster_boxes_, receiver_boxes_); break;
         case lab::LightDesc::Type::Point: f = fit_point(position, caster_boxes_, receiver_boxes_); break;
     }
-    map.perspective = light.type != lab::LightDesc::Type::Directional;
+    const bool perspective = light.type != lab::LightDesc::Type::Directional;
     // Perspective depth = a − b / distance (glm::perspectiveRH_ZO), for the cube lookup and the view.
     const double a = f.far_plane / (f.far_plane - f.near_plane), b = f.far_plane * f.near_plane / (f.far_plane - f.near_plane);
     map.gpu.view_projection = glm::mat4(f.view_projection);
     map.gpu.position = glm::vec4(light.position, 1.0f);
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
     // normal_offset / resolution.
-    map.gpu.params = glm::vec4(float(f.texel), map.perspective ? float(a) : 0.0f, map.perspective ? float(b) : 0.0f, 0.0f);
+    map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
 
-    const uint32_t faces = map.cube ? 6 : 1;
-    for (uint32_t face = 0; face < faces; ++face) {
+    for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4& view_projection = map.cube ? f.faces[face] : f.view_projection;
-        lab::begin_offscreen_pass(cmd, depth_pass_, map.framebuffers[face], map.resolution, false);
+        map.depth.begin(cmd, face);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
         // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
         // (grows with how steeply the triangle's depth changes across a texel).
@@ -296,7 +256,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         draw_casters(cmd, view_projection, lighting, false, light);
         vkCmdEndRenderPass(cmd);
         if (!translucent_) continue;
-        lab::begin_offscreen_pass(cmd, translucent_pass_, map.translucent_framebuffers[face], map.resolution, true);
+        map.transmittance.begin(cmd, face);
         for (const auto* pipeline : {&nearest_[map.cube], &multiply_[map.cube]}) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
             draw_casters(cmd, view_projection, lighting, true, light);

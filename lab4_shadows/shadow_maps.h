@@ -7,9 +7,11 @@
 #pragma once
 
 #include "buffer.h"
+#include "depth_view.h"
 #include "gpu_mesh.h"
 #include "light_frustum.h"
 #include "lights.h"
+#include "offscreen.h"
 #include "pipeline_builder.h"
 
 #include <glm/glm.hpp>
@@ -56,27 +58,21 @@ public:
     bool translucent() const { return translucent_; }  // the maps carry transmittance
     int maps() const { return int(maps_.size()); }
     int renders() const { return renders_; }  // maps rendered so far (a cube counts once)
-    // Where the shadow-map view shows slot `slot`: its kind (0 none, 1 2D, 2 cube), perspective?
-    int kind(int slot) const;
-    bool perspective(int slot) const;
+    // The shadow-map view (UI only): slot's map (a cube: its six faces) drawn by `view`; none for no map.
+    void draw_view(lab::DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const;
 
 private:
     struct Map {
         int light = -1;  // index into Lighting::lights
         bool cube = false;
-        uint32_t resolution = 1;
-        lab::Image depth;
-        std::vector<lab::Handle<VkImageView>> face_views;     // cube: one per face
-        std::vector<lab::Handle<VkFramebuffer>> framebuffers;  // [face]
-        lab::Image transmittance;  // translucent scenes: r = Π(1 − α), g = nearest translucent depth
-        lab::Image scratch_depth;  // its depth test (the nearest translucent face), not kept
-        std::vector<lab::Handle<VkImageView>> transmittance_views, scratch_views;
-        std::vector<lab::Handle<VkFramebuffer>> translucent_framebuffers;
+        lab::LayeredTarget depth;          // the map (its size: the resolution), one framebuffer per face
+        lab::Image scratch_depth;          // translucent scenes: the transmittance's depth test, not kept
+        lab::LayeredTarget transmittance;  // r = Π(1 − α), g = nearest translucent depth
         std::vector<float> key;  // what the map was rendered from (change tracking)
         GpuShadow gpu{};
-        bool perspective = false;
     };
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
+    std::vector<std::string> layout_of(const Lighting& lighting) const;  // what matches() compares
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting, bool translucent,
@@ -99,6 +95,6 @@ private:
     lab::Handle<VkSampler> nearest_sampler_, compare_sampler_;
     std::vector<Map> maps_;          // one per shadow slot, in slot order
     Map stand_in_2d_, stand_in_cube_;  // 1×1, cleared: what unused slots' descriptors point at
-    std::vector<std::string> layout_;  // what matches() compares
+    std::vector<std::string> layout_;  // layout_of() the lighting the maps were made for
     int renders_ = 0;
 };

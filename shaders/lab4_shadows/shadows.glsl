@@ -5,23 +5,16 @@
 
 // --- per shadow slot (up to 4 shadow-casting lights), specialization constants (lights.h) ---
 // A pipeline contains only the lookups its scene needs, each PCF loop with a fixed trip count;
-// a scene without shadow-casting lights has none at all (SHADOWS is false).
-layout(constant_id = 13) const int SHADOW_KIND_0 = 0;  // 0 no map, 1 2D (directional, spot), 2 cube (point)
-layout(constant_id = 14) const int SHADOW_PCF_0 = 1;   // N: an N×N kernel of taps
-layout(constant_id = 15) const int SHADOW_FILTER_0 = 0;  // 0 nearest: manual compare, 1 bilinear: comparison sampler
-layout(constant_id = 16) const bool SHADOW_TRANSLUCENT_0 = false;  // a transmittance map beside the depth map
-layout(constant_id = 17) const int SHADOW_KIND_1 = 0;
-layout(constant_id = 18) const int SHADOW_PCF_1 = 1;
-layout(constant_id = 19) const int SHADOW_FILTER_1 = 0;
-layout(constant_id = 20) const bool SHADOW_TRANSLUCENT_1 = false;
-layout(constant_id = 21) const int SHADOW_KIND_2 = 0;
-layout(constant_id = 22) const int SHADOW_PCF_2 = 1;
-layout(constant_id = 23) const int SHADOW_FILTER_2 = 0;
-layout(constant_id = 24) const bool SHADOW_TRANSLUCENT_2 = false;
-layout(constant_id = 25) const int SHADOW_KIND_3 = 0;
-layout(constant_id = 26) const int SHADOW_PCF_3 = 1;
-layout(constant_id = 27) const int SHADOW_FILTER_3 = 0;
-layout(constant_id = 28) const bool SHADOW_TRANSLUCENT_3 = false;
+// a scene without shadow-casting lights has none at all (SHADOWS is false). Slot i's constants:
+// SHADOW_KIND_i 0 no map, 1 2D (directional, spot), 2 cube (point); SHADOW_PCF_i N: an N×N kernel
+// of taps; SHADOW_FILTER_i 0 nearest: manual compare, 1 bilinear: comparison sampler;
+// SHADOW_TRANSLUCENT_i: a transmittance map beside the depth map.
+#define SHADOW_CONSTANTS(i, id)                                   \
+    layout(constant_id = id) const int SHADOW_KIND_##i = 0;       \
+    layout(constant_id = id + 1) const int SHADOW_PCF_##i = 1;    \
+    layout(constant_id = id + 2) const int SHADOW_FILTER_##i = 0; \
+    layout(constant_id = id + 3) const bool SHADOW_TRANSLUCENT_##i = false;
+SHADOW_CONSTANTS(0, 13) SHADOW_CONSTANTS(1, 17) SHADOW_CONSTANTS(2, 21) SHADOW_CONSTANTS(3, 25)
 const bool SHADOWS = SHADOW_KIND_0 != 0 || SHADOW_KIND_1 != 0 || SHADOW_KIND_2 != 0 || SHADOW_KIND_3 != 0;
 
 struct ShadowSlot {
@@ -134,25 +127,12 @@ float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerC
     return sum / float(pcf * pcf);
 }
 
-// The slot's lookup with the slot's constants (samplers are picked with constant indices).
+// Slot i's lookup with slot i's constants (samplers are picked with constant indices).
+#define SHADOW_SLOT(i) case i: \
+    if (SHADOW_KIND_##i == 1) return shadow_2d(shadow_depth[i], shadow_compare[i], translucency[i], SHADOW_PCF_##i, SHADOW_FILTER_##i, SHADOW_TRANSLUCENT_##i, shadow_slots[i], P, N); \
+    if (SHADOW_KIND_##i == 2) return shadow_cube(cube_depth[i], cube_compare[i], cube_translucency[i], SHADOW_PCF_##i, SHADOW_FILTER_##i, SHADOW_TRANSLUCENT_##i, shadow_slots[i], P, N); \
+    break;
 float shadow_factor(int slot, vec3 P, vec3 N) {
-    switch (slot) {
-        case 0:
-            if (SHADOW_KIND_0 == 1) return shadow_2d(shadow_depth[0], shadow_compare[0], translucency[0], SHADOW_PCF_0, SHADOW_FILTER_0, SHADOW_TRANSLUCENT_0, shadow_slots[0], P, N);
-            if (SHADOW_KIND_0 == 2) return shadow_cube(cube_depth[0], cube_compare[0], cube_translucency[0], SHADOW_PCF_0, SHADOW_FILTER_0, SHADOW_TRANSLUCENT_0, shadow_slots[0], P, N);
-            break;
-        case 1:
-            if (SHADOW_KIND_1 == 1) return shadow_2d(shadow_depth[1], shadow_compare[1], translucency[1], SHADOW_PCF_1, SHADOW_FILTER_1, SHADOW_TRANSLUCENT_1, shadow_slots[1], P, N);
-            if (SHADOW_KIND_1 == 2) return shadow_cube(cube_depth[1], cube_compare[1], cube_translucency[1], SHADOW_PCF_1, SHADOW_FILTER_1, SHADOW_TRANSLUCENT_1, shadow_slots[1], P, N);
-            break;
-        case 2:
-            if (SHADOW_KIND_2 == 1) return shadow_2d(shadow_depth[2], shadow_compare[2], translucency[2], SHADOW_PCF_2, SHADOW_FILTER_2, SHADOW_TRANSLUCENT_2, shadow_slots[2], P, N);
-            if (SHADOW_KIND_2 == 2) return shadow_cube(cube_depth[2], cube_compare[2], cube_translucency[2], SHADOW_PCF_2, SHADOW_FILTER_2, SHADOW_TRANSLUCENT_2, shadow_slots[2], P, N);
-            break;
-        case 3:
-            if (SHADOW_KIND_3 == 1) return shadow_2d(shadow_depth[3], shadow_compare[3], translucency[3], SHADOW_PCF_3, SHADOW_FILTER_3, SHADOW_TRANSLUCENT_3, shadow_slots[3], P, N);
-            if (SHADOW_KIND_3 == 2) return shadow_cube(cube_depth[3], cube_compare[3], cube_translucency[3], SHADOW_PCF_3, SHADOW_FILTER_3, SHADOW_TRANSLUCENT_3, shadow_slots[3], P, N);
-            break;
-    }
+    switch (slot) { SHADOW_SLOT(0) SHADOW_SLOT(1) SHADOW_SLOT(2) SHADOW_SLOT(3) }
     return 1.0;  // casts no shadow
 }

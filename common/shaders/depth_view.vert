@@ -1,10 +1,10 @@
 #version 450
-// map_view.vert — lab 4's shadow-map view: one screen rectangle per map (per face of a cube
-// map), two triangles made from the vertex index (no vertex buffer).
+// depth_view.vert — one square of the depth view (common/depth_view.h): two triangles made from
+// the vertex index (no vertex buffer) over the rectangle given in normalized device coordinates.
 
 layout(push_constant) uniform ViewConstants {
-    vec4 rect;    // x0, y0, x1, y1 in normalized device coordinates
-    ivec4 which;  // x: shadow slot, y: cube face (−1: a 2D map), z: 1 for a perspective map
+    vec4 rect;         // x0, y0, x1, y1
+    vec4 perspective;  // depth_view.frag
 } view;
 
 layout(location = 0) out vec2 out_uv;

@@ -1,0 +1,38 @@
+#include "bounds.h"
+
+#include <limits>
+
+namespace lab {
+
+Box Box::empty() {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {glm::dvec3(inf), glm::dvec3(-inf)};
+}
+
+void Box::add(const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+}
+
+void Box::add(const Box& b) {
+    lo = glm::min(lo, b.lo);
+    hi = glm::max(hi, b.hi);
+}
+
+Box mesh_bounds(const Mesh& mesh) {
+    if (mesh.vertices.empty()) return Box{};
+    Box box = Box::empty();
+    for (const Vertex& v : mesh.vertices) box.add(glm::dvec3(v.position));
+    return box;
+}
+
+Box transformed(const Box& box, const glm::dmat4& m) {
+    Box out = Box::empty();
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 corner(i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z);
+        out.add(glm::dvec3(m * glm::dvec4(corner, 1.0)));
+    }
+    return out;
+}
+
+}  // namespace lab

@@ -1,0 +1,26 @@
+// bounds.h — axis-aligned bounding boxes in double precision: around a mesh, moved by a
+// transform, grown to hold more (lab 4 fits its shadow maps to the objects' boxes).
+#pragma once
+
+#include "mesh.h"
+
+#include <glm/glm.hpp>
+
+namespace lab {
+
+struct Box {
+    glm::dvec3 lo{0.0};
+    glm::dvec3 hi{0.0};
+
+    // lo = +∞, hi = −∞: holds nothing, and grows to exactly the first point or box added.
+    static Box empty();
+    void add(const glm::dvec3& p);
+    void add(const Box& b);
+};
+
+// The box around a mesh's vertex positions (a mesh without vertices: the point box at the origin).
+Box mesh_bounds(const Mesh& mesh);
+// The box around `box`'s eight corners moved by `m` (an affine transform, e.g. a model or view matrix).
+Box transformed(const Box& box, const glm::dmat4& m);
+
+}  // namespace lab

@@ -1,0 +1,63 @@
+#include "depth_view.h"
+
+#include "offscreen.h"
+#include "shader.h"
+
+// SPIR-V of common/shaders/depth_view.*, compiled by CMake into uint32_t arrays.
+#include "depth_view_frag_spv.h"
+#include "depth_view_vert_spv.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace lab {
+
+namespace {
+constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+struct ViewConstants {  // depth_view.vert / .frag
+    glm::vec4 rect;     // x0, y0, x1, y1 in normalized device coordinates
+    glm::vec4 perspective;
+};
+}  // namespace
+
+DepthView::DepthView(const VulkanContext& vk, VkRenderPass pass, uint32_t max_images)
+    : vk_(vk), sampler_(make_depth_sampler(vk, false, false)), max_images_(max_images) {
+    const std::vector<DescriptorBinding> bindings = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+    set_layout_ = make_descriptor_set_layout(vk, bindings);
+    pool_ = make_descriptor_pool(vk, bindings, max_images);
+    const Handle<VkShaderModule> vert = make_shader_module(vk, depth_view_vert_spv, sizeof(depth_view_vert_spv));
+    const Handle<VkShaderModule> frag = make_shader_module(vk, depth_view_frag_spv, sizeof(depth_view_frag_spv));
+    pipeline_ = PipelineBuilder()
+                    .shaders(vert, frag)
+                    .vertex_attributes(0)  // the rectangle comes from the vertex index
+                    .descriptor_set(set_layout_)
+                    .push_constants(kBoth, sizeof(ViewConstants))
+                    .cull(VK_CULL_MODE_NONE)
+                    .depth(false, false)
+                    .build(vk, pass);
+}
+
+void DepthView::draw(VkCommandBuffer cmd, const std::vector<VkImageView>& layers, glm::vec2 perspective, VkExtent2D extent) {
+    if (layers.empty()) return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
+    const int n = int(layers.size()), columns = std::min(n, 3), rows = (n + columns - 1) / columns;
+    const float height = rows == 1 ? 0.8f : 0.84f / float(rows);  // one square, in NDC (2 = the whole window)
+    const float width = height * float(extent.height) / float(std::max(extent.width, 1u));
+    for (int i = 0; i < n; ++i) {
+        auto it = sets_.find(layers[size_t(i)]);
+        if (it == sets_.end()) {
+            if (sets_.size() >= max_images_) throw std::logic_error("DepthView: more images than max_images");
+            const VkDescriptorSet set = allocate_descriptor_set(vk_, pool_, set_layout_);
+            write_image_descriptors(vk_, set, 0, {{sampler_, layers[size_t(i)], VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}});
+            it = sets_.emplace(layers[size_t(i)], set).first;
+        }
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &it->second, 0, nullptr);
+        const float x0 = (float(i % columns) - 0.5f * float(columns)) * (width + 0.01f);
+        const float y1 = 0.98f - float(rows - 1 - i / columns) * (height + 0.01f);
+        const ViewConstants constants{{x0, y1 - height, x0 + width, y1}, glm::vec4(perspective, 0.0f, 0.0f)};
+        vkCmdPushConstants(cmd, pipeline_.layout, kBoth, 0, sizeof constants, &constants);
+        vkCmdDraw(cmd, 6, 1, 0, 0);
+    }
+}
+
+}  // namespace lab

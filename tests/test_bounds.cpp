@@ -1,0 +1,60 @@
+// test_bounds.cpp — common/bounds.h: boxes around meshes, moved by transforms, grown; every
+// expected value worked out by hand.
+#include "bounds.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+void expect_box(const lab::Box& b, glm::dvec3 lo, glm::dvec3 hi, double tolerance = 0.0) {
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(b.lo[i], lo[i], tolerance) << "lo[" << i << "]";
+        EXPECT_NEAR(b.hi[i], hi[i], tolerance) << "hi[" << i << "]";
+    }
+}
+
+TEST(Bounds, EmptyBoxTakesExactlyTheFirstPointOrBox) {
+    lab::Box b = lab::Box::empty();
+    EXPECT_TRUE(std::isinf(b.lo.x) && b.lo.x > 0 && std::isinf(b.hi.x) && b.hi.x < 0);
+    b.add(glm::dvec3(1, -2, 3));
+    expect_box(b, {1, -2, 3}, {1, -2, 3});
+    b.add(glm::dvec3(-1, 5, 3));
+    expect_box(b, {-1, -2, 3}, {1, 5, 3});
+    lab::Box c = lab::Box::empty();
+    c.add(lab::Box{{0, 0, 0}, {2, 2, 2}});
+    c.add(lab::Box{{-3, 1, 1}, {-2, 1.5, 4}});
+    expect_box(c, {-3, 0, 0}, {2, 2, 4});
+}
+
+TEST(Bounds, MeshBoundsAreItsVertexPositions) {
+    lab::Mesh m;
+    for (glm::vec3 p : {glm::vec3(0.5f, -1, 2), glm::vec3(-0.25f, 3, 2), glm::vec3(0, 0, -7)}) {
+        lab::Vertex v{};
+        v.position = p;
+        m.vertices.push_back(v);
+    }
+    expect_box(lab::mesh_bounds(m), {-0.25, -1, -7}, {0.5, 3, 2});
+    // The unit cube (docs/meshes.md: edge 1 around the origin).
+    expect_box(lab::mesh_bounds(lab::make_cube()), glm::dvec3(-0.5), glm::dvec3(0.5));
+    // No vertices: the point box at the origin, never ±∞.
+    expect_box(lab::mesh_bounds(lab::Mesh{}), glm::dvec3(0.0), glm::dvec3(0.0));
+}
+
+TEST(Bounds, TransformedBoxHoldsTheMovedCorners) {
+    const lab::Box unit{glm::dvec3(-1, -2, -3), glm::dvec3(1, 2, 3)};
+    // Scale 2 in x, then move by (10, 0, −1): x ∈ [8, 12], z ∈ [−4, 2].
+    const glm::dmat4 m = glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(10, 0, -1)), glm::dvec3(2, 1, 1));
+    expect_box(lab::transformed(unit, m), {8, -2, -4}, {12, 2, 2});
+    // 90° about Y: (x, y, z) → (z, y, −x): x ∈ [−3, 3], z ∈ [−1, 1].
+    const glm::dmat4 r = glm::rotate(glm::dmat4(1.0), glm::radians(90.0), glm::dvec3(0, 1, 0));
+    expect_box(lab::transformed(unit, r), {-3, -2, -1}, {3, 2, 1}, 1e-12);
+    // 45° about Z: the box [−1, 1]² grows to ±√2 in x and y.
+    const lab::Box square{glm::dvec3(-1, -1, 0), glm::dvec3(1, 1, 0)};
+    const glm::dmat4 q = glm::rotate(glm::dmat4(1.0), glm::radians(45.0), glm::dvec3(0, 0, 1));
+    expect_box(lab::transformed(square, q), {-std::sqrt(2.0), -std::sqrt(2.0), 0}, {std::sqrt(2.0), std::sqrt(2.0), 0}, 1e-12);
+}
+
+}  // namespace

@@ -1,0 +1,95 @@
+// test_offscreen.cpp — common/offscreen.h's layered render targets and common/depth_view.h on a
+// real device, validation on: each layer of a cube target cleared to its own depth, shown by the
+// depth view, read back at the squares' centres (positions and greys worked out by hand).
+#include "depth_view.h"
+#include "headless_target.h"
+#include "offscreen.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+namespace {
+
+constexpr uint32_t kSize = 200;  // the frame, 200×200: NDC x, y ∈ [−1, 1] → pixel (x + 1) · 100
+
+// What an 8-bit sRGB target stores for linear grey `v`.
+int srgb8(double v) {
+    const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+    return int(std::lround(255.0 * s));
+}
+
+int red_at(const lab::Image8& image, int x, int y) { return image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4]; }
+
+// Clears every layer of `target` to depth[layer] (its pass begun and ended on each).
+void clear_layers(VkCommandBuffer cmd, const lab::LayeredTarget& target, const std::vector<float>& depth) {
+    for (uint32_t layer = 0; layer < target.layers(); ++layer) {
+        target.begin(cmd, layer, depth[layer]);
+        vkCmdEndRenderPass(cmd);
+    }
+}
+
+TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
+    int messages = 0;
+    {
+        lab::ContextOptions options;
+        options.validate = true;
+        options.message_count = &messages;
+        lab::VulkanContext vk(options);
+        lab::HeadlessTarget frame_target(vk, {kSize, kSize});
+        const VkFormatFeatureFlags use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+        const VkFormat format = lab::format_supports(vk, VK_FORMAT_D32_SFLOAT, use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
+        const lab::Handle<VkRenderPass> pass = lab::make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, format);
+        const VkImageUsageFlags usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+
+        // A cube: six layers, each with its own 2D view and framebuffer; a 2D target: its view is its layer.
+        const lab::LayeredTarget cube = lab::create_layered_target(vk, pass, 4, true, format, usage, VK_IMAGE_ASPECT_DEPTH_BIT);
+        ASSERT_EQ(cube.layers(), 6u);
+        std::set<VkImageView> views;
+        for (uint32_t i = 0; i < 6; ++i) views.insert(cube.layer(i));
+        EXPECT_EQ(views.size(), 6u);
+        EXPECT_EQ(views.count(cube.image.view.get()), 0u) << "a face is a 2D view, not the cube view";
+        lab::LayeredTarget flat = lab::create_layered_target(vk, pass, 8, false, format, usage, VK_IMAGE_ASPECT_DEPTH_BIT);
+        ASSERT_EQ(flat.layers(), 1u);
+        EXPECT_EQ(flat.layer(0), flat.image.view.get());
+        EXPECT_TRUE(cube.pass == pass.get() && cube.size == 4 && flat.size == 8 && !cube.color);
+
+        lab::DepthView depth_view(vk, frame_target.render_pass(), 7);
+        // Frame 1: layer i of the cube at depth (i + 1) / 8, orthographic (shown as stored).
+        // Six squares of 0.42 NDC (84 / 2 rows), three to a row, 0.01 apart, centred:
+        // column centres x0 + 0.21 = (c − 1.5) · 0.43 + 0.21 → −0.435, −0.005, 0.425 → pixels 56, 99, 142;
+        // the second row ends at y = 0.98, the first 0.43 above it: centres 0.34, 0.77 → pixels 134, 177.
+        const std::vector<float> depths = {0.125f, 0.25f, 0.375f, 0.5f, 0.625f, 0.75f};
+        lab::Frame frame;
+        ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
+            clear_layers(f.cmd, cube, depths);
+        }));
+        std::vector<VkImageView> layers;
+        for (uint32_t i = 0; i < 6; ++i) layers.push_back(cube.layer(i));
+        depth_view.draw(frame.cmd, layers, glm::vec2(0.0f), frame.extent);
+        frame_target.end_frame();
+        lab::Image8 image = frame_target.read_pixels();
+        const int xs[3] = {56, 99, 142}, ys[2] = {134, 177};
+        for (int i = 0; i < 6; ++i)
+            EXPECT_NEAR(red_at(image, xs[i % 3], ys[i / 3]), srgb8(depths[size_t(i)]), 1) << "layer " << i;
+        EXPECT_EQ(red_at(image, 5, 5), 0) << "outside the squares: the clear colour";
+        EXPECT_EQ(red_at(image, 99, 100), 0) << "above the squares";
+
+        // Frame 2: a perspective map (near 1, far 11: depth = a − b / z with a = b = 1.1), cleared
+        // to the depth of z = 3.5: shown as (z − near) / (far − near) = 0.25. One square of 0.8 NDC:
+        // x ∈ [−0.405, 0.395], y ∈ [0.18, 0.98] → centre pixel (99, 158).
+        const float a = 1.1f, b = 1.1f;
+        ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
+            clear_layers(f.cmd, flat, {a - b / 3.5f});
+        }));
+        depth_view.draw(frame.cmd, {flat.layer(0)}, glm::vec2(a, b), frame.extent);
+        frame_target.end_frame();
+        image = frame_target.read_pixels();
+        EXPECT_NEAR(red_at(image, 99, 158), srgb8(0.25), 1);
+        EXPECT_EQ(red_at(image, 56, 134), 0) << "the cube's squares are gone";
+    }
+    EXPECT_EQ(messages, 0) << "validation messages (see stderr)";
+}
+
+}  // namespace
