@@ -1,5 +1,6 @@
 #include "bounds.h"
 
+#include <cmath>
 #include <limits>
 
 namespace lab {
@@ -24,6 +25,19 @@ Box mesh_bounds(const Mesh& mesh) {
     Box box = Box::empty();
     for (const Vertex& v : mesh.vertices) box.add(glm::dvec3(v.position));
     return box;
+}
+
+bool touches_cone(const Box& box, const glm::dvec3& apex, const glm::dvec3& axis, double half_angle_deg) {
+    const double angle = glm::radians(half_angle_deg);
+    if (angle >= glm::radians(89.0)) return true;
+    const glm::dvec3 centre = 0.5 * (box.lo + box.hi);
+    const double radius = 0.5 * glm::length(box.hi - box.lo);
+    const glm::dvec3 v = centre - apex;
+    if (glm::length(v) <= radius) return true;  // the apex is inside the sphere
+    const double along = glm::dot(v, axis);
+    const double across = glm::length(v - along * axis);
+    // Signed distance from the sphere's centre to the cone's surface (positive outside).
+    return along >= -radius && across * std::cos(angle) - along * std::sin(angle) <= radius;
 }
 
 Box transformed(const Box& box, const glm::dmat4& m) {

@@ -1,5 +1,6 @@
 // bounds.h — axis-aligned bounding boxes in double precision: around a mesh, moved by a
-// transform, grown to hold more (lab 4 fits its shadow maps to the objects' boxes).
+// transform, grown to hold more, against a cone (lab 4 fits its shadow maps to the objects'
+// boxes and skips the objects outside a spot light's cone).
 #pragma once
 
 #include "mesh.h"
@@ -22,5 +23,10 @@ struct Box {
 Box mesh_bounds(const Mesh& mesh);
 // The box around `box`'s eight corners moved by `m` (an affine transform, e.g. a model or view matrix).
 Box transformed(const Box& box, const glm::dmat4& m);
+
+// Can a point of `box` lie inside the cone from `apex` along the unit vector `axis` with the given
+// half-angle? Tested with the box's bounding sphere: false is certain, true may not be. A
+// half-angle of 89° or more counts as everything (the test below needs a cone narrower than 90°).
+bool touches_cone(const Box& box, const glm::dvec3& apex, const glm::dvec3& axis, double half_angle_deg);
 
 }  // namespace lab

@@ -37,19 +37,20 @@ DepthView::DepthView(const VulkanContext& vk, VkRenderPass pass, uint32_t max_im
                     .build(vk, pass);
 }
 
-void DepthView::draw(VkCommandBuffer cmd, const std::vector<VkImageView>& layers, glm::vec2 perspective, VkExtent2D extent) {
-    if (layers.empty()) return;
+void DepthView::draw(VkCommandBuffer cmd, const LayeredTarget& target, glm::vec2 perspective, VkExtent2D extent) {
+    if (target.layers() == 0) return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
-    const int n = int(layers.size()), columns = std::min(n, 3), rows = (n + columns - 1) / columns;
+    const int n = int(target.layers()), columns = std::min(n, 3), rows = (n + columns - 1) / columns;
     const float height = rows == 1 ? 0.8f : 0.84f / float(rows);  // one square, in NDC (2 = the whole window)
     const float width = height * float(extent.height) / float(std::max(extent.width, 1u));
     for (int i = 0; i < n; ++i) {
-        auto it = sets_.find(layers[size_t(i)]);
+        const VkImageView layer = target.layer(uint32_t(i));
+        auto it = sets_.find(layer);
         if (it == sets_.end()) {
             if (sets_.size() >= max_images_) throw std::logic_error("DepthView: more images than max_images");
             const VkDescriptorSet set = allocate_descriptor_set(vk_, pool_, set_layout_);
-            write_image_descriptors(vk_, set, 0, {{sampler_, layers[size_t(i)], VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}});
-            it = sets_.emplace(layers[size_t(i)], set).first;
+            write_image_descriptors(vk_, set, 0, {{sampler_, layer, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}});
+            it = sets_.emplace(layer, set).first;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &it->second, 0, nullptr);
         const float x0 = (float(i % columns) - 0.5f * float(columns)) * (width + 0.01f);

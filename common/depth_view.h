@@ -2,6 +2,7 @@
 // shadow-map view). UI only: drawn inside the frame's render pass, over the picture.
 #pragma once
 
+#include "offscreen.h"
 #include "pipeline_builder.h"
 #include "vk_context.h"
 
@@ -18,12 +19,12 @@ public:
     // (each gets its descriptor set on first use; the views must outlive this object).
     DepthView(const VulkanContext& vk, VkRenderPass pass, uint32_t max_images);
 
-    // Draws `layers` (2D views of depth images in DEPTH_STENCIL_READ_ONLY_OPTIMAL, e.g. a cube
+    // Draws the layers of `target` (a depth image in DEPTH_STENCIL_READ_ONLY_OPTIMAL, e.g. a cube
     // map's six faces) as squares at the bottom centre of a frame of `extent`, three to a row, the
     // first row on top. `perspective`: (a, b) of a perspective projection's depth d = a − b / z,
     // turned back into the distance z and spread from near (black) to far (white), else nearly
     // everything looks white; b = 0: the depth is shown as it is (orthographic).
-    void draw(VkCommandBuffer cmd, const std::vector<VkImageView>& layers, glm::vec2 perspective, VkExtent2D extent);
+    void draw(VkCommandBuffer cmd, const LayeredTarget& target, glm::vec2 perspective, VkExtent2D extent);
 
 private:
     const VulkanContext& vk_;

@@ -7,7 +7,7 @@ GpuMesh upload_mesh(const VulkanContext& vk, const Mesh& mesh) {
                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT),
                    Buffer::device_local(vk, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
                                         VK_BUFFER_USAGE_INDEX_BUFFER_BIT),
-                   static_cast<uint32_t>(mesh.indices.size())};
+                   static_cast<uint32_t>(mesh.indices.size()), mesh_bounds(mesh)};
 }
 
 void bind_mesh(VkCommandBuffer cmd, const GpuMesh& mesh) {

@@ -121,15 +121,5 @@ LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& caste
 }
 
 bool in_spot_cone(const Box& box, const glm::dvec3& position, const glm::dvec3& direction, double outer_deg) {
-    const double angle = glm::radians(outer_deg + 1.0);
-    if (angle >= glm::radians(89.0)) return true;  // a (nearly) half-space cone: anything may be in it
-    const glm::dvec3 centre = 0.5 * (box.lo + box.hi);
-    const double radius = 0.5 * glm::length(box.hi - box.lo);
-    const glm::dvec3 v = centre - position;
-    if (glm::length(v) <= radius) return true;  // the light is inside the sphere
-    const glm::dvec3 d = unit_or_down(direction);
-    const double along = glm::dot(v, d);
-    const double across = glm::length(v - along * d);
-    // Signed distance from the sphere's centre to the cone's surface (positive outside).
-    return along >= -radius && across * std::cos(angle) - along * std::sin(angle) <= radius;
+    return lab::touches_cone(box, position, unit_or_down(direction), outer_deg + 1.0);  // a degree of margin
 }

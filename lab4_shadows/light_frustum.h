@@ -35,6 +35,6 @@ LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, d
                       const std::vector<Box>& casters, const std::vector<Box>& receivers);
 LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters, const std::vector<Box>& receivers);
 
-// Can a caster inside `box` throw a shadow in the spot light's cone? (Its bounding sphere
-// against the cone: a caster outside never changes the map.)
+// Can a caster inside `box` throw a shadow in the spot light's cone (lab::touches_cone)? A caster
+// outside never changes the map.
 bool in_spot_cone(const Box& box, const glm::dvec3& position, const glm::dvec3& direction, double outer_deg);

@@ -51,6 +51,8 @@ Lighting Lighting::from_scene(const lab::Scene& scene) {
     if (shadowed > kMaxShadowLights)
         std::fprintf(stderr, "warning: at most %d lights cast shadows: %ld cast none\n", kMaxShadowLights,
                      shadowed - kMaxShadowLights);
+    for (const lab::ObjectDesc& o : scene.objects)
+        l.translucent_casters = l.translucent_casters || (o.cast_shadows && scene.materials.at(o.material).opacity < 1.0f);
     return l;
 }
 
@@ -135,7 +137,7 @@ Variant variant_of(const Lighting& l) {
             l.options.toon_bands,
             0, 0, 0, 0,  // the material's maps: Renderer fills them in per draw
             int32_t(l.mip_view)};
-    // Lab 4: per shadow slot, what its lookup needs (the translucent flag: Renderer).
+    // Lab 4: per shadow slot, what its lookup needs.
     const std::vector<int> slots = l.shadow_slots();
     for (size_t i = 0; i < l.lights.size(); ++i) {
         if (slots[i] < 0) continue;
@@ -144,6 +146,7 @@ Variant variant_of(const Lighting& l) {
         c[0] = l.lights[i].type == lab::LightDesc::Type::Point ? 2 : 1;
         c[1] = s.pcf;
         c[2] = int32_t(s.filter);
+        c[3] = l.translucent_casters;
     }
     return v;
 }

@@ -77,6 +77,7 @@ struct Lighting {
     bool mip_view = false;  // lab 3: tint textured pixels by the mip level they read
     bool animate_lights = false;  // lab 4: lights circle the scene's Y axis (what a moving light costs)
     int shadow_view = -1;         // lab 4: the light whose shadow map is shown (−1: none)
+    bool translucent_casters = false;  // lab 4: a shadow caster is translucent: the maps carry transmittance
 
     static Lighting from_scene(const lab::Scene& scene);
     int material_index(const std::string& name) const;
@@ -95,7 +96,7 @@ struct Lighting {
 // 5 distribution, 6 NaN check, 7 toon bands; lab 3, per material: 8 albedo map, 9 specular map,
 // 10 emissive map, 11 distorted sampling, 12 mip-level view (variant_of leaves 8..11 at 0);
 // lab 4, per shadow slot s: 13 + 4s map kind (0 none, 1 2D, 2 cube), 14 + 4s PCF kernel N,
-// 15 + 4s filter (0 nearest, 1 bilinear), 16 + 4s translucent casters (the renderer sets it).
+// 15 + 4s filter (0 nearest, 1 bilinear), 16 + 4s translucent casters.
 constexpr int kShadowConstants = 13;
 using Variant = std::array<int32_t, kShadowConstants + 4 * kMaxShadowLights>;
 Variant variant_of(const Lighting& lighting);

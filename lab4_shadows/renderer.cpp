@@ -38,15 +38,12 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
       shadow_view_(vk, target.render_pass(), 6 * kMaxShadowLights) {
     // Geometry: upload each distinct mesh once, remember what to draw.
     lab::MeshLibrary library;  // reads each model file once
-    std::map<std::string, Box> bounds;  // lab 4: [mesh] its box in model space
-    std::vector<Caster> casters;        // lab 4: what the shadow maps draw
+    std::vector<Caster> casters;  // lab 4: what the shadow maps draw
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
-            const lab::Mesh mesh = library.mesh(object);
-            bounds[key] = lab::mesh_bounds(mesh);
-            it = meshes_.emplace(key, lab::upload_mesh(vk, mesh)).first;
+            it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
         }
         const lab::MaterialDesc& material = scene.materials.at(object.material);
         items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
@@ -55,7 +52,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         lit.model = items_.back().constants.model;
         normal_matrix(lit.model, lit.normal_matrix);
         lit.material = uint32_t(lighting.material_index(object.material));
-        const Box box = lab::transformed(bounds[key], glm::dmat4(lit.model));  // world space
+        const Box box = lab::transformed(it->second.bounds, glm::dmat4(lit.model));  // world space
         items_.back().centre = glm::vec3(0.5 * (box.lo + box.hi));
         casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows});
     }
@@ -104,7 +101,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lit_fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
     textured_fragment_shader_ = lab::load_shader(vk, shader_dir, "textured.frag");
     load_textures(lighting);
-    lit_pipeline(lit_variant(lighting));  // the scene's own variant, built up front
+    lit_pipeline(variant_of(lighting));  // the scene's own variant, built up front
 }
 
 // Each map image is loaded and uploaded once, however many materials use it, with a mip chain
@@ -182,7 +179,7 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
 // Lab 3: textured_only = draw only the objects with maps (the others went the ambient-only way).
 void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, bool textured_only,
                         const std::vector<const DrawItem*>& items, Pass pass) {
-    Variant variant = lit_variant(lighting);
+    Variant variant = variant_of(lighting);
     VkPipeline bound_pipeline = VK_NULL_HANDLE;
     VkDescriptorSet bound_maps = VK_NULL_HANDLE;
     const lab::GpuMesh* bound = nullptr;
@@ -213,14 +210,6 @@ void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& ligh
                            sizeof(LitConstants), &item.lit);
         vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
     }
-}
-
-// Lab 4: variant_of() and whether the shadow maps carry transmittance (translucent casters).
-Variant Renderer::lit_variant(const Lighting& lighting) const {
-    Variant variant = variant_of(lighting);
-    for (int s = 0; s < kMaxShadowLights; ++s)
-        variant[kShadowConstants + 4 * s + 3] = variant[kShadowConstants + 4 * s] != 0 && shadow_maps_->translucent();
-    return variant;
 }
 
 // The lighting model, the shading and the number of lights of each type are specialization

@@ -71,7 +71,6 @@ private:
     void load_textures(const Lighting& lighting);
     // The lit pipeline for the current specialization constants (built on first use, then cached).
     const lab::PipelineBuilder::Result& lit_pipeline(const Variant& variant, Pass pass = Pass::Opaque);
-    Variant lit_variant(const Lighting& lighting) const;
     // lab 1's unlit pipeline draws the light markers, and whole scenes without lights.
     void draw_markers(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
     void draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);

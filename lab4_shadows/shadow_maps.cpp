@@ -1,6 +1,5 @@
 #include "shadow_maps.h"
 
-#include "offscreen.h"
 #include "shader.h"
 
 #include <algorithm>
@@ -18,34 +17,43 @@ constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAG
 constexpr double kMaxTexels = 268435456.0;
 
 bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
+
+// What the images depend on: each shadow-casting light's index, type and resolution; whether
+// the casters are translucent (the last number).
+std::vector<int> layout_of(const Lighting& lighting) {
+    std::vector<int> layout;
+    const std::vector<int> slots = lighting.shadow_slots();
+    for (size_t i = 0; i < lighting.lights.size(); ++i)
+        if (slots[i] >= 0) layout.insert(layout.end(), {int(i), int(lighting.lights[i].type), lighting.lights[i].shadow.resolution});
+    layout.push_back(lighting.translucent_casters);
+    return layout;
+}
 }  // namespace
 
 ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects, const Lighting& lighting,
                        const std::string& shader_dir)
-    : vk_(vk), objects_(std::move(objects)) {
+    : vk_(vk), objects_(std::move(objects)), translucent_(lighting.translucent_casters) {
     for (const Caster& c : objects_) {
         receiver_boxes_.push_back(c.box);
-        if (!c.casts) continue;
-        caster_boxes_.push_back(c.box);
-        translucent_ = translucent_ || translucent_material(lighting, c.material);
+        if (c.casts) caster_boxes_.push_back(c.box);
     }
     // 32-bit float depth where the device samples it (precision for perspective maps), else 16-bit.
     // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
     const VkFormatFeatureFlags depth_use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     depth_format_ = lab::format_supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
-    linear_filter_ = lab::format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
+    const bool linear = lab::format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
     const VkFormatFeatureFlags blend_use = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     transmittance_format_ = lab::format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
 
     depth_pass_ = lab::make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
     translucent_pass_ = lab::make_offscreen_pass(vk, transmittance_format_, depth_format_);
     nearest_sampler_ = lab::make_depth_sampler(vk, false, false);
-    compare_sampler_ = lab::make_depth_sampler(vk, linear_filter_, true);
+    compare_sampler_ = lab::make_depth_sampler(vk, linear, true);
 
     // Opaque casters: depth only — position-only vertex input, no fragment shader, no colour.
-    vertex_shader_ = lab::load_shader(vk, shader_dir, "shadow.vert");
+    const lab::Handle<VkShaderModule> vertex_shader = lab::load_shader(vk, shader_dir, "shadow.vert");
     opaque_ = lab::PipelineBuilder()
-                  .shaders(vertex_shader_, VK_NULL_HANDLE)
+                  .shaders(vertex_shader, VK_NULL_HANDLE)
                   .vertex_attributes(lab::kPosition)
                   .push_constants(kBoth, sizeof(ShadowConstants))
                   .cull(VK_CULL_MODE_NONE)  // a plane casts from either side
@@ -53,7 +61,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                   .dynamic_depth_bias()
                   .build(vk, depth_pass_);
     if (translucent_) {
-        translucent_shader_ = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
+        const lab::Handle<VkShaderModule> translucent_shader = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
         for (int cube = 0; cube < 2; ++cube) {
             // Front faces as the light sees them; a cube face's view mirrors the winding.
             const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
@@ -64,7 +72,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                                                         VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
                                                         VK_COLOR_COMPONENT_R_BIT};
             lab::PipelineBuilder builder;
-            builder.shaders(vertex_shader_, translucent_shader_)
+            builder.shaders(vertex_shader, translucent_shader)
                 .vertex_attributes(lab::kPosition)
                 .push_constants(kBoth, sizeof(ShadowConstants))
                 .cull(back);
@@ -93,9 +101,8 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
 
 uint32_t ShadowMaps::clamp_resolution(int requested, bool cube) const {
     const VkPhysicalDeviceLimits& limits = vk_.properties().limits;
-    uint32_t most = std::min({cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D, limits.maxFramebufferWidth,
-                              limits.maxFramebufferHeight});
-    most = std::min(most, uint32_t(std::sqrt(kMaxTexels / (cube ? 6.0 : 1.0))));
+    const uint32_t most = std::min({cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D, limits.maxFramebufferWidth,
+                                    limits.maxFramebufferHeight, uint32_t(std::sqrt(kMaxTexels / (cube ? 6.0 : 1.0)))});
     const uint32_t resolution = std::clamp(uint32_t(std::max(requested, 1)), 1u, most);
     if (resolution != uint32_t(requested))
         std::fprintf(stderr, "warning: shadow map resolution %d: at most %u here (%s), using %u\n", requested, most,
@@ -148,28 +155,12 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
     }
 }
 
-// What the images depend on: each shadow-casting light's type and resolution, translucent casters.
-std::vector<std::string> ShadowMaps::layout_of(const Lighting& lighting) const {
-    std::vector<std::string> layout;
-    const std::vector<int> slots = lighting.shadow_slots();
-    bool translucent = false;
-    for (const Caster& c : objects_) translucent = translucent || (c.casts && translucent_material(lighting, c.material));
-    for (size_t i = 0; i < lighting.lights.size(); ++i)
-        if (slots[i] >= 0)
-            layout.push_back(std::to_string(i) + ":" + std::to_string(int(lighting.lights[i].type)) + ":" +
-                             std::to_string(lighting.lights[i].shadow.resolution));
-    layout.push_back(translucent ? "translucent" : "opaque");
-    return layout;
-}
-
 bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }
 
 void ShadowMaps::draw_view(lab::DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
-    const Map& m = maps_[size_t(slot)];
-    std::vector<VkImageView> layers;
-    for (uint32_t face = 0; face < m.depth.layers(); ++face) layers.push_back(m.depth.layer(face));
-    view.draw(cmd, layers, glm::vec2(m.gpu.params.y, m.gpu.params.z), extent);  // perspective depth: y − z / distance
+    const GpuShadow& gpu = maps_[size_t(slot)].gpu;  // perspective depth: y − z / distance
+    view.draw(cmd, maps_[size_t(slot)].depth, glm::vec2(gpu.params.y, gpu.params.z), extent);
 }
 
 // Change tracking: everything a map depends on, as numbers. The light's placement and the

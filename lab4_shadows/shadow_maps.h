@@ -6,13 +6,10 @@
 // volume, changed: a static scene renders its maps once.
 #pragma once
 
-#include "buffer.h"
-#include "depth_view.h"
+#include "depth_view.h"  // and offscreen.h, pipeline_builder.h
 #include "gpu_mesh.h"
 #include "light_frustum.h"
 #include "lights.h"
-#include "offscreen.h"
-#include "pipeline_builder.h"
 
 #include <glm/glm.hpp>
 
@@ -55,7 +52,6 @@ public:
     // True when these maps still fit `lighting` (the same lights cast shadows, with the same
     // resolutions); if not, the renderer is rebuilt (new images).
     bool matches(const Lighting& lighting) const;
-    bool translucent() const { return translucent_; }  // the maps carry transmittance
     int maps() const { return int(maps_.size()); }
     int renders() const { return renders_; }  // maps rendered so far (a cube counts once)
     // The shadow-map view (UI only): slot's map (a cube: its six faces) drawn by `view`; none for no map.
@@ -72,7 +68,6 @@ private:
         GpuShadow gpu{};
     };
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
-    std::vector<std::string> layout_of(const Lighting& lighting) const;  // what matches() compares
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting, bool translucent,
@@ -85,16 +80,14 @@ private:
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     VkFormat transmittance_format_ = VK_FORMAT_R32G32_SFLOAT;
     bool translucent_ = false;  // some caster is translucent
-    bool linear_filter_ = true; // the depth format filters linearly (else bilinear falls back to nearest)
     lab::Handle<VkRenderPass> depth_pass_;        // depth only
     lab::Handle<VkRenderPass> translucent_pass_;  // transmittance + scratch depth
-    lab::Handle<VkShaderModule> vertex_shader_, translucent_shader_;
     lab::PipelineBuilder::Result opaque_;                    // depth only, depth bias
     std::array<lab::PipelineBuilder::Result, 2> nearest_;    // [cube]: g = nearest translucent depth
     std::array<lab::PipelineBuilder::Result, 2> multiply_;   // [cube]: r ×= 1 − α
     lab::Handle<VkSampler> nearest_sampler_, compare_sampler_;
     std::vector<Map> maps_;          // one per shadow slot, in slot order
     Map stand_in_2d_, stand_in_cube_;  // 1×1, cleared: what unused slots' descriptors point at
-    std::vector<std::string> layout_;  // layout_of() the lighting the maps were made for
+    std::vector<int> layout_;  // layout_of() the lighting the maps were made for
     int renders_ = 0;
 };

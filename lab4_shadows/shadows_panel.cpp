@@ -20,16 +20,14 @@ void shadows_panel(Lighting& l, float frame_ms, int renders) {
     ImGui::Checkbox("animate lights", &l.animate_lights);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every light circles the Y axis: its map is rendered every frame");
     // The shadow-map view: one light's map (a point light's six faces) in the bottom right.
-    std::string current = l.shadow_view < 0 || l.shadow_view >= int(l.lights.size())
-                              ? "none"
-                              : std::string(kTypes[int(l.lights[size_t(l.shadow_view)].type)]) + " " + std::to_string(l.shadow_view);
-    if (ImGui::BeginCombo("shadow-map view", current.c_str())) {
-        if (ImGui::Selectable("none", l.shadow_view < 0)) l.shadow_view = -1;
-        for (size_t i = 0; i < l.lights.size(); ++i) {
-            if (!l.lights[i].cast_shadows) continue;
-            const std::string name = std::string(kTypes[int(l.lights[i].type)]) + " " + std::to_string(i);
-            if (ImGui::Selectable(name.c_str(), l.shadow_view == int(i))) l.shadow_view = int(i);
-        }
+    const auto name = [&](int i) {
+        return i < 0 || i >= int(l.lights.size()) ? std::string("none")
+                                                  : std::string(kTypes[int(l.lights[size_t(i)].type)]) + " " + std::to_string(i);
+    };
+    if (ImGui::BeginCombo("shadow-map view", name(l.shadow_view).c_str())) {
+        for (int i = -1; i < int(l.lights.size()); ++i)  // none, then the lights that cast shadows
+            if ((i < 0 || l.lights[size_t(i)].cast_shadows) && ImGui::Selectable(name(i).c_str(), std::max(l.shadow_view, -1) == i))
+                l.shadow_view = i;
         ImGui::EndCombo();
     }
     for (size_t i = 0; i < l.lights.size(); ++i) {

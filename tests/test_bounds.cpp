@@ -1,5 +1,5 @@
-// test_bounds.cpp — common/bounds.h: boxes around meshes, moved by transforms, grown; every
-// expected value worked out by hand.
+// test_bounds.cpp — common/bounds.h: boxes around meshes, moved by transforms, grown, against a
+// cone; every expected value worked out by hand.
 #include "bounds.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -55,6 +55,21 @@ TEST(Bounds, TransformedBoxHoldsTheMovedCorners) {
     const lab::Box square{glm::dvec3(-1, -1, 0), glm::dvec3(1, 1, 0)};
     const glm::dmat4 q = glm::rotate(glm::dmat4(1.0), glm::radians(45.0), glm::dvec3(0, 0, 1));
     expect_box(lab::transformed(square, q), {-std::sqrt(2.0), -std::sqrt(2.0), 0}, {std::sqrt(2.0), std::sqrt(2.0), 0}, 1e-12);
+}
+
+TEST(Bounds, ConeTouchesBoxesWithinItsAngle) {
+    // A 30° cone from the origin along +X; a box of half-size 0.1 (bounding radius √0.03 ≈ 0.173).
+    const glm::dvec3 apex(0.0), axis(1, 0, 0);
+    const auto box_at = [](glm::dvec3 c) { return lab::Box{c - 0.1, c + 0.1}; };
+    EXPECT_TRUE(lab::touches_cone(box_at({5, 0, 0}), apex, axis, 30.0)) << "on the axis";
+    EXPECT_TRUE(lab::touches_cone(box_at({5, 2.5, 0}), apex, axis, 30.0)) << "26.6° off the axis";
+    EXPECT_FALSE(lab::touches_cone(box_at({5, 5, 0}), apex, axis, 30.0)) << "45° off the axis";
+    EXPECT_FALSE(lab::touches_cone(box_at({-5, 0, 0}), apex, axis, 30.0)) << "behind the apex";
+    EXPECT_TRUE(lab::touches_cone(box_at({0.05, 0.05, 0}), apex, axis, 30.0)) << "the apex inside the box";
+    // 45° off the axis at distance √50: the sphere's centre is √50 · sin(15°) ≈ 1.83 outside a 30° cone.
+    const lab::Box big{glm::dvec3(5 - 1.9, 5 - 1.9, -1.9), glm::dvec3(5 + 1.9, 5 + 1.9, 1.9)};  // radius 1.9·√3 ≈ 3.29
+    EXPECT_TRUE(lab::touches_cone(big, apex, axis, 30.0)) << "a large box reaches into the cone";
+    EXPECT_TRUE(lab::touches_cone(box_at({-5, 0, 0}), apex, axis, 89.0)) << "89° or more: everything";
 }
 
 }  // namespace

@@ -65,9 +65,7 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
             clear_layers(f.cmd, cube, depths);
         }));
-        std::vector<VkImageView> layers;
-        for (uint32_t i = 0; i < 6; ++i) layers.push_back(cube.layer(i));
-        depth_view.draw(frame.cmd, layers, glm::vec2(0.0f), frame.extent);
+        depth_view.draw(frame.cmd, cube, glm::vec2(0.0f), frame.extent);
         frame_target.end_frame();
         lab::Image8 image = frame_target.read_pixels();
         const int xs[3] = {56, 99, 142}, ys[2] = {134, 177};
@@ -83,7 +81,7 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
             clear_layers(f.cmd, flat, {a - b / 3.5f});
         }));
-        depth_view.draw(frame.cmd, {flat.layer(0)}, glm::vec2(a, b), frame.extent);
+        depth_view.draw(frame.cmd, flat, glm::vec2(a, b), frame.extent);
         frame_target.end_frame();
         image = frame_target.read_pixels();
         EXPECT_NEAR(red_at(image, 99, 158), srgb8(0.25), 1);
