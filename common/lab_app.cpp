@@ -79,7 +79,9 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
     if (window_) {
         window_->show();  // created hidden: bad input never flashes a window
         target_ = std::make_unique<WindowTarget>(*vk_, *window_);
-        ui_ = std::make_unique<ImGuiLayer>(*vk_, window_->handle(), target_->render_pass());
+        const auto& window_target = static_cast<const WindowTarget&>(*target_);
+        ui_ = std::make_unique<ImGuiLayer>(*vk_, window_->handle(), window_target.render_pass(),
+                                           window_target.color_format(), window_target.accepts_copies());
         status_ = StatusFile::from_environment();
     } else {
         auto target = std::make_unique<HeadlessTarget>(*vk_, VkExtent2D{options.width, options.height});
@@ -261,7 +263,8 @@ bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
     phase(2);
     ui_->render(frame.cmd);
     phase(1);
-    target_->end_frame();
+    static_cast<WindowTarget&>(*target_).end_frame(
+        [&](VkCommandBuffer cmd, VkImage image) { ui_->render_after_pass(cmd, image); });
     phase(3);
     frame_submitted();
     last_slot_ = frame.slot;
