@@ -28,7 +28,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 
 namespace {
@@ -122,7 +121,7 @@ int main(int argc, char** argv) {
         Controls controls;
         Lighting lighting = Lighting::from_scene(scene);
         const char* animate = std::getenv("LAB_ANIMATE_LIGHTS");
-        lighting.animate_lights = animate && std::strcmp(animate, "1") == 0;
+        lighting.animate_lights = animate && std::string(animate) == "1";
         if (const char* view = std::getenv("LAB_SHADOW_VIEW")) lighting.shadow_view = std::atoi(view);  // headless pictures
         auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, LAB_SHADER_DIR);
         lab::SceneReloader reloader(app.options().scene, scene);
