@@ -188,9 +188,8 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
             ++renders_;
         }
         // Only the lookup's numbers: the map still holds what they describe.
-        GpuShadow gpu = map.gpu;
-        gpu.params.x *= light.shadow.normal_offset / float(map.depth.size);
-        out->slot[slot] = gpu;
+        (*out)[slot] = map.gpu;
+        (*out)[slot].params.x *= light.shadow.normal_offset / float(map.depth.size);
     }
 }
 
