@@ -66,9 +66,13 @@ done
 
 [ "${IDLE:-1}" = 0 ] && exit 0  # IDLE=0: frame costs only
 for lab in "${labs[@]}"; do
-  "$build/$lab/$lab" >/dev/null 2>&1 &
+  rm -f "$tmp/status"
+  LAB_STATUS_FILE="$tmp/status" "$build/$lab/$lab" >/dev/null 2>&1 &
   pid=$!
-  sleep 3  # start-up and the first frames
+  # Start-up (lab 4 compiles its shader variants at the first frame: seconds on lavapipe), then 3 s
+  # for the frames after it (ImGui settling) before the idle window is measured.
+  for _ in $(seq 600); do grep -q '^frame=' "$tmp/status" 2>/dev/null && break; sleep 0.1; done
+  sleep 3
   ticks() { awk '{print $14 + $15}' "/proc/$pid/stat"; }  # utime + stime, in clock ticks
   t0=$(ticks); sleep 10; t1=$(ticks)
   kill "$pid"; wait "$pid" 2>/dev/null || true

@@ -52,6 +52,12 @@ struct Image {
     Image& operator=(Image&& other) noexcept;  // destroys the old image in the right order first
 };
 
+// A layout transition of the colour mip levels [base, base + count) of `image`, with the memory
+// dependency from `src_access` in `src_stage` to `dst_access` in `dst_stage`.
+void image_barrier(VkCommandBuffer cmd, VkImage image, uint32_t base, uint32_t count, VkImageLayout from,
+                   VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
+                   VkPipelineStageFlags dst_stage);
+
 // `mip_levels` levels; the view covers all of them.
 Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                       VkImageAspectFlags aspect, uint32_t mip_levels = 1);

@@ -10,20 +10,25 @@
 
 namespace lab {
 
-ImGuiLayer::ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass render_pass) {
+ImGuiLayer::ImGuiLayer(const VulkanContext& vk, GLFWwindow* window, VkRenderPass render_pass, VkFormat format,
+                       bool copy_to_target) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // never write imgui.ini into the working directory
     ImGui::GetIO().BackendRendererName = "lab::ImGuiRenderer";
     ImGui::GetIO().BackendFlags |= ImGuiBackendFlags_RendererHasVtxOffset;  // large meshes: VtxOffset honoured
     ImGui::StyleColorsDark();
+    // Opaque panels (the dark style's are 94 % opaque): their pixels are copied onto the frame
+    // instead of blended, which on a CPU driver is most of what the UI costs a frame (ui_regions.h).
+    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
+    ImGui::GetStyle().Colors[ImGuiCol_PopupBg].w = 1.0f;
     ImGui_ImplGlfw_InitForVulkan(window, true);  // chains to the window's own callbacks
     // GLFW 3.3 has these standard cursors; ImGui's other shapes fall back to the arrow.
     cursors_[ImGuiMouseCursor_TextInput] = glfwCreateStandardCursor(GLFW_IBEAM_CURSOR);
     cursors_[ImGuiMouseCursor_ResizeNS] = glfwCreateStandardCursor(GLFW_VRESIZE_CURSOR);
     cursors_[ImGuiMouseCursor_ResizeEW] = glfwCreateStandardCursor(GLFW_HRESIZE_CURSOR);
     cursors_[ImGuiMouseCursor_Hand] = glfwCreateStandardCursor(GLFW_HAND_CURSOR);
-    renderer_ = std::make_unique<ImGuiRenderer>(vk, render_pass);  // uploads the font atlas
+    renderer_ = std::make_unique<ImGuiRenderer>(vk, render_pass, format, copy_to_target);  // uploads the font atlas
 }
 
 ImGuiLayer::~ImGuiLayer() {
@@ -78,6 +83,7 @@ void ImGuiLayer::prepare(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent) 
 }
 
 void ImGuiLayer::render(VkCommandBuffer cmd) { renderer_->composite(cmd); }
+void ImGuiLayer::render_after_pass(VkCommandBuffer cmd, VkImage image) { renderer_->copy_opaque(cmd, image); }
 
 bool ImGuiLayer::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
 bool ImGuiLayer::wants_keyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }

@@ -14,7 +14,6 @@
 #include "overlay_vert_spv.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -64,21 +63,21 @@ Handle<VkRenderPass> make_overlay_pass(const VulkanContext& vk, VkFormat format)
     subpass.pColorAttachments = &ref;
 
     VkSubpassDependency dependencies[2] = {};
-    // Earlier frames (possibly still in flight) read the overlay in their fragment shaders:
-    // those reads must be over before this pass overwrites it (write after read).
+    // Earlier frames (possibly still in flight) read the overlay in their fragment shaders and
+    // copies: those reads must be over before this pass overwrites it (write after read).
     dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[0].dstSubpass = 0;
-    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
     dependencies[0].srcAccessMask = 0;
     dependencies[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     dependencies[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    // ...and this pass's writes must be done before the frames that blend it read it.
+    // ...and this pass's writes must be done before the frames that blend or copy it read it.
     dependencies[1].srcSubpass = 0;
     dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
-    dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
 
     return create_render_pass(vk, 1, &color, subpass, dependencies);
 }
@@ -109,13 +108,14 @@ void append_value(std::vector<uint8_t>& out, const T& value) {
 }
 }  // namespace
 
-// sRGB-encoded 8-bit, like the swapchain: dark premultiplied colours keep their precision. (On
-// lavapipe the blend costs about 40 % of the composite and reading the overlay 60 %, whatever the
-// format: R8G8B8A8_UNORM, R16G16B16A16_UNORM and _SFLOAT measured the same.)
-constexpr VkFormat kOverlayFormat = VK_FORMAT_R8G8B8A8_SRGB;
-
-ImGuiRenderer::ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass)
-    : vk_(vk), srgb_to_linear_(make_srgb_to_linear_table()) {
+// The overlay has the target's format (8-bit sRGB, like the swapchain): dark premultiplied colours
+// keep their precision, and its opaque pixels can be copied bit for bit. (On lavapipe blending a
+// pixel costs about 40 % of compositing it and reading the overlay 60 %, whatever the overlay's
+// format: R8G8B8A8_UNORM, R16G16B16A16_UNORM and _SFLOAT measured the same; copying is far cheaper.)
+ImGuiRenderer::ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass, VkFormat target_format,
+                             bool copy_to_target)
+    : vk_(vk), overlay_format_(target_format), copy_to_target_(copy_to_target),
+      srgb_to_linear_(make_srgb_to_linear_table()) {
     VkDevice device = vk.device();
 
     // The font atlas: white texels whose alpha is the glyph's coverage. In the R8G8B8A8_SRGB
@@ -149,7 +149,7 @@ ImGuiRenderer::ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass)
     overlay_set_ = allocate_descriptor_set(vk, pool_, set_layout_);
     write_image_descriptor(vk, font_set_, 0, nearest_, font_.view);
 
-    overlay_pass_ = make_overlay_pass(vk, kOverlayFormat);
+    overlay_pass_ = make_overlay_pass(vk, overlay_format_);
     {
         const Handle<VkShaderModule> vert = make_shader_module(vk, imgui_vert_spv, sizeof(imgui_vert_spv));
         const Handle<VkShaderModule> frag = make_shader_module(vk, imgui_frag_spv, sizeof(imgui_frag_spv));
@@ -191,8 +191,10 @@ ImGuiRenderer::~ImGuiRenderer() = default;
 void ImGuiRenderer::make_overlay(VkExtent2D extent) {
     if (overlay_.image) VK_CHECK(vkDeviceWaitIdle(vk_.device()));  // frames in flight still read it (a resize: rare)
     overlay_framebuffer_ = {};
-    overlay_ = create_image_2d(vk_, extent, kOverlayFormat,
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    overlay_ = create_image_2d(vk_, extent, overlay_format_,
+                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                               VK_IMAGE_ASPECT_COLOR_BIT);
     VkImageView view = overlay_.view;
     VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     info.renderPass = overlay_pass_;
@@ -276,61 +278,13 @@ void ImGuiRenderer::upload(uint32_t slot, const ImDrawData& draw_data) {
     }
 }
 
-void ImGuiRenderer::find_panel_rects(const ImDrawData& draw_data, VkExtent2D extent) {
-    // A draw list is one panel (or tooltip, popup): its pixels lie inside both the bounding box
-    // of its vertices and the union of its clip rectangles.
-    const ImVec2 origin = draw_data.DisplayPos, scale = draw_data.FramebufferScale;
-    panels_.clear();
-    for (int i = 0; i < draw_data.CmdListsCount; ++i) {
-        const ImDrawList& list = *draw_data.CmdLists[i];
-        if (list.VtxBuffer.Size == 0) continue;
-        float bx0 = FLT_MAX, by0 = FLT_MAX, bx1 = -FLT_MAX, by1 = -FLT_MAX;
-        for (const ImDrawVert& v : list.VtxBuffer) {
-            bx0 = std::min(bx0, v.pos.x), by0 = std::min(by0, v.pos.y);
-            bx1 = std::max(bx1, v.pos.x), by1 = std::max(by1, v.pos.y);
-        }
-        float cx0 = FLT_MAX, cy0 = FLT_MAX, cx1 = -FLT_MAX, cy1 = -FLT_MAX;
-        for (const ImDrawCmd& c : list.CmdBuffer) {
-            cx0 = std::min(cx0, c.ClipRect.x), cy0 = std::min(cy0, c.ClipRect.y);
-            cx1 = std::max(cx1, c.ClipRect.z), cy1 = std::max(cy1, c.ClipRect.w);
-        }
-        // To framebuffer pixels, rounded outwards, clamped to the framebuffer.
-        const auto px = [&](float v, float o, float s) { return (v - o) * s; };
-        Rect r;
-        r.x0 = std::max(0, int32_t(std::floor(px(std::max(bx0, cx0), origin.x, scale.x))));
-        r.y0 = std::max(0, int32_t(std::floor(px(std::max(by0, cy0), origin.y, scale.y))));
-        r.x1 = std::min(int32_t(extent.width), int32_t(std::ceil(px(std::min(bx1, cx1), origin.x, scale.x))));
-        r.y1 = std::min(int32_t(extent.height), int32_t(std::ceil(px(std::min(by1, cy1), origin.y, scale.y))));
-        if (r.x0 < r.x1 && r.y0 < r.y1) panels_.push_back(r);
-    }
-    // Overlapping rectangles (a tooltip over a panel) are merged, so that no pixel is blended twice.
-    const auto overlap = [](const Rect& a, const Rect& b) {
-        return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-    };
-    for (bool merged = true; merged;) {
-        merged = false;
-        for (size_t i = 0; i < panels_.size() && !merged; ++i)
-            for (size_t j = i + 1; j < panels_.size() && !merged; ++j)
-                if (overlap(panels_[i], panels_[j])) {
-                    panels_[i] = {std::min(panels_[i].x0, panels_[j].x0), std::min(panels_[i].y0, panels_[j].y0),
-                                  std::max(panels_[i].x1, panels_[j].x1), std::max(panels_[i].y1, panels_[j].y1)};
-                    panels_.erase(panels_.begin() + std::ptrdiff_t(j));
-                    merged = true;
-                }
-    }
-    drawn_area_ = panels_.empty() ? Rect{0, 0, 0, 0} : panels_.front();
-    for (const Rect& r : panels_)
-        drawn_area_ = {std::min(drawn_area_.x0, r.x0), std::min(drawn_area_.y0, r.y0), std::max(drawn_area_.x1, r.x1),
-                       std::max(drawn_area_.y1, r.y1)};
-}
-
 void ImGuiRenderer::draw_overlay(VkCommandBuffer cmd, uint32_t slot, const ImDrawData& draw_data) {
     VkClearValue clear{};  // transparent: colour 0, coverage 0
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = overlay_pass_;
     begin.framebuffer = overlay_framebuffer_;
-    begin.renderArea = {{drawn_area_.x0, drawn_area_.y0},
-                        {uint32_t(drawn_area_.x1 - drawn_area_.x0), uint32_t(drawn_area_.y1 - drawn_area_.y0)}};
+    begin.renderArea = {{regions_.bounds.x0, regions_.bounds.y0},
+                        {uint32_t(regions_.bounds.x1 - regions_.bounds.x0), uint32_t(regions_.bounds.y1 - regions_.bounds.y0)}};
     begin.clearValueCount = 1;
     begin.pClearValues = &clear;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
@@ -356,10 +310,10 @@ void ImGuiRenderer::draw_overlay(VkCommandBuffer cmd, uint32_t slot, const ImDra
         for (const ImDrawCmd& c : list.CmdBuffer) {
             if (c.UserCallback) continue;  // the labs add no callbacks
             // The clip rectangle in framebuffer pixels, inside the render area.
-            const int32_t x0 = std::max(drawn_area_.x0, int32_t(std::floor((c.ClipRect.x - origin.x) * fb_scale.x)));
-            const int32_t y0 = std::max(drawn_area_.y0, int32_t(std::floor((c.ClipRect.y - origin.y) * fb_scale.y)));
-            const int32_t x1 = std::min(drawn_area_.x1, int32_t(std::ceil((c.ClipRect.z - origin.x) * fb_scale.x)));
-            const int32_t y1 = std::min(drawn_area_.y1, int32_t(std::ceil((c.ClipRect.w - origin.y) * fb_scale.y)));
+            const int32_t x0 = std::max(regions_.bounds.x0, int32_t(std::floor((c.ClipRect.x - origin.x) * fb_scale.x)));
+            const int32_t y0 = std::max(regions_.bounds.y0, int32_t(std::floor((c.ClipRect.y - origin.y) * fb_scale.y)));
+            const int32_t x1 = std::min(regions_.bounds.x1, int32_t(std::ceil((c.ClipRect.z - origin.x) * fb_scale.x)));
+            const int32_t y1 = std::min(regions_.bounds.y1, int32_t(std::ceil((c.ClipRect.w - origin.y) * fb_scale.y)));
             if (x0 >= x1 || y0 >= y1 || c.ElemCount == 0) continue;
             const VkRect2D scissor{{x0, y0}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
             vkCmdSetScissor(cmd, 0, 1, &scissor);
@@ -375,8 +329,9 @@ void ImGuiRenderer::prepare(VkCommandBuffer cmd, uint32_t slot, VkExtent2D exten
     if (!overlay_.image || extent.width != overlay_extent_.width || extent.height != overlay_extent_.height)
         make_overlay(extent);
     if (same_as_last(draw_data, extent)) return;  // the overlay already shows these panels
-    find_panel_rects(draw_data, extent);
-    if (!panels_.empty()) {
+    regions_ = find_ui_regions(draw_data, int32_t(extent.width), int32_t(extent.height),
+                               ImGui::GetIO().Fonts->TexUvWhitePixel, copy_to_target_);
+    if (!regions_.bounds.empty()) {
         upload(slot, draw_data);
         draw_overlay(cmd, slot, draw_data);
     }
@@ -385,7 +340,7 @@ void ImGuiRenderer::prepare(VkCommandBuffer cmd, uint32_t slot, VkExtent2D exten
 }
 
 void ImGuiRenderer::composite(VkCommandBuffer cmd) const {
-    if (panels_.empty()) return;
+    if (regions_.blend.empty()) return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, composite_pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, composite_layout_, 0, 1, &overlay_set_, 0, nullptr);
     const VkViewport viewport{0.0f, 0.0f, float(overlay_extent_.width), float(overlay_extent_.height), 0.0f, 1.0f};
@@ -393,13 +348,39 @@ void ImGuiRenderer::composite(VkCommandBuffer cmd) const {
     const VkRect2D scissor{{0, 0}, overlay_extent_};
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     const float sx = 2.0f / float(overlay_extent_.width), sy = 2.0f / float(overlay_extent_.height);
-    for (const Rect& r : panels_) {
+    for (const PixelRect& r : regions_.blend) {
         // The rectangle in clip space, drawn as two triangles: exactly its pixels are shaded.
         const float rect[4] = {float(r.x0) * sx - 1.0f, float(r.y0) * sy - 1.0f, float(r.x1) * sx - 1.0f,
                                float(r.y1) * sy - 1.0f};
         vkCmdPushConstants(cmd, composite_layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(rect), rect);
         vkCmdDraw(cmd, 4, 1, 0, 0);
     }
+}
+
+void ImGuiRenderer::copy_opaque(VkCommandBuffer cmd, VkImage target_image) const {
+    if (regions_.copy.empty()) return;
+    std::vector<VkImageCopy> copies;
+    copies.reserve(regions_.copy.size());
+    for (const PixelRect& r : regions_.copy) {
+        VkImageCopy copy{};
+        copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.dstSubresource = copy.srcSubresource;
+        copy.srcOffset = {r.x0, r.y0, 0};
+        copy.dstOffset = copy.srcOffset;
+        copy.extent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
+        copies.push_back(copy);
+    }
+    // The overlay is kept in the layout for sampling; for the copy it moves to the one for copying
+    // from, and back (a frame's composite has read it; the next frame's may read it again).
+    image_barrier(cmd, overlay_.image, 0, 1, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, VK_ACCESS_TRANSFER_READ_BIT,
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT);
+    vkCmdCopyImage(cmd, overlay_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target_image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies.size()), copies.data());
+    image_barrier(cmd, overlay_.image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
 }
 
 }  // namespace lab

@@ -4,7 +4,10 @@
 // small blended, textured triangles. Yet most frames show the same panels as the frame before
 // (the camera moves, the UI does not). So the panels are drawn into an overlay image only when
 // ImGui's draw data differ from the last drawn (compared byte for byte, not hashed), and every
-// frame blends that overlay over the picture: one rectangle (two triangles) per panel.
+// frame puts that overlay over the picture: where a panel is opaque its pixels are copied
+// (vkCmdCopyImage after the frame's render pass, a memcpy per row on a CPU driver); the rest —
+// borders, collapsed title bars — is blended inside the pass, one rectangle (two triangles) each.
+// ui_regions.h says which pixels are which.
 //
 // The overlay holds premultiplied linear colour and coverage. Drawing ImGui's triangles into a
 // cleared overlay with "over" blending (colour: src·α + dst·(1−α); alpha: α + dst·(1−α)) and then
@@ -14,6 +17,7 @@
 
 #include "buffer.h"
 #include "render_target.h"
+#include "ui_regions.h"
 #include "vk_context.h"
 
 #include <array>
@@ -26,8 +30,10 @@ namespace lab {
 
 class ImGuiRenderer {
 public:
-    // `target_pass`: the frame's render pass (the overlay is blended inside it).
-    ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass);
+    // `target_pass`: the frame's render pass (the overlay is blended inside it); `target_format`:
+    // its colour format (the overlay's, so that copies are exact); `copy_to_target`: whether
+    // copy_opaque() may be used (the target's images accept transfers), else everything is blended.
+    ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass, VkFormat target_format, bool copy_to_target);
     ~ImGuiRenderer();
     ImGuiRenderer(const ImGuiRenderer&) = delete;
     ImGuiRenderer& operator=(const ImGuiRenderer&) = delete;
@@ -36,23 +42,24 @@ public:
     // framebuffer size) changed since the last call. `slot` is the frame-in-flight slot (the
     // vertex and index buffers of a slot are free once its fence was waited for).
     void prepare(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent, const ImDrawData& draw_data);
-    // Inside the frame's render pass: blends the overlay over the picture, panel by panel.
+    // Inside the frame's render pass: blends the overlay's translucent parts over the picture.
     void composite(VkCommandBuffer cmd) const;
+    // After the frame's render pass: copies the overlay's opaque panels into `target_image`
+    // (in TRANSFER_DST_OPTIMAL layout).
+    void copy_opaque(VkCommandBuffer cmd, VkImage target_image) const;
 
     // How many times the overlay was drawn (the rest of the frames reused it).
     uint64_t redraw_count() const { return redraws_; }
 
 private:
-    struct Rect {
-        int32_t x0, y0, x1, y1;  // pixels, [x0, x1) × [y0, y1)
-    };
     void make_overlay(VkExtent2D extent);
     bool same_as_last(const ImDrawData& draw_data, VkExtent2D extent);
     void upload(uint32_t slot, const ImDrawData& draw_data);
-    void find_panel_rects(const ImDrawData& draw_data, VkExtent2D extent);
     void draw_overlay(VkCommandBuffer cmd, uint32_t slot, const ImDrawData& draw_data);
 
     const VulkanContext& vk_;
+    const VkFormat overlay_format_;
+    const bool copy_to_target_;
     // ImGui's colours are sRGB-encoded; the targets are *_SRGB and encode again on write. Each
     // vertex colour channel goes through this table (sRGB byte -> linear byte) before drawing.
     std::array<uint8_t, 256> srgb_to_linear_{};
@@ -69,7 +76,7 @@ private:
     Handle<VkPipeline> composite_pipeline_;
 
     Handle<VkRenderPass> overlay_pass_;
-    Image overlay_;  // R8G8B8A8_SRGB, the framebuffer's size
+    Image overlay_;  // the target's format (8-bit sRGB) and size
     Handle<VkFramebuffer> overlay_framebuffer_;
     VkExtent2D overlay_extent_{};
 
@@ -79,8 +86,7 @@ private:
 
     std::vector<uint8_t> last_, current_;  // the draw data drawn last / this frame, as bytes
     bool overlay_valid_ = false;
-    std::vector<Rect> panels_;  // disjoint rectangles that hold every UI pixel
-    Rect drawn_area_{};         // their bounding box (the overlay pass's render area)
+    UiRegions regions_;  // which pixels the overlay copies and blends (bounds: the overlay pass's render area)
     uint64_t redraws_ = 0;
 };
 

@@ -63,7 +63,9 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
     if (window_) {
         window_->show();  // created hidden: bad input never flashes a window
         target_ = std::make_unique<WindowTarget>(*vk_, *window_);
-        ui_ = std::make_unique<ImGuiLayer>(*vk_, window_->handle(), target_->render_pass());
+        const auto& window_target = static_cast<const WindowTarget&>(*target_);
+        ui_ = std::make_unique<ImGuiLayer>(*vk_, window_->handle(), window_target.render_pass(),
+                                           window_target.color_format(), window_target.accepts_copies());
         status_ = StatusFile::from_environment();
     } else {
         auto target = std::make_unique<HeadlessTarget>(*vk_, VkExtent2D{options.width, options.height});
@@ -224,8 +226,8 @@ bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
     };
     // The UI is built first: nothing of the frame is recorded yet, so a panel may replace what
     // the lab draws with (a new renderer). Then the lab's own commands outside the pass (lab 4's
-    // shadow maps), then the overlay, redrawn if the UI changed; inside the pass the overlay is
-    // blended over the lab's picture (imgui_renderer.h).
+    // shadow maps), then the overlay, redrawn if the UI changed; its translucent edges are blended
+    // over the lab's picture inside the pass, its opaque panels copied in after it (imgui_renderer.h).
     const BeforePass before_pass = [&](const Frame& begun) {
         phase(0);
         ui_->new_frame(*window_, ui_dt);
@@ -242,7 +244,8 @@ bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
     phase(2);
     ui_->render(frame.cmd);
     phase(1);
-    target_->end_frame();
+    static_cast<WindowTarget&>(*target_).end_frame(
+        [&](VkCommandBuffer cmd, VkImage image) { ui_->render_after_pass(cmd, image); });
     phase(3);
     frame_submitted();
     last_slot_ = frame.slot;

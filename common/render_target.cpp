@@ -29,8 +29,8 @@ Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_fo
     subpass.pColorAttachments = &color_ref;
     subpass.pDepthStencilAttachment = &depth_ref;
 
-    // The previous frame's writes (colour, depth, and the readback copy) must
-    // finish before this frame clears the same attachments.
+    // The previous frame's writes (colour, depth, a copy into the colour image) and its readback
+    // copy's reads must finish before this frame clears the same attachments.
     VkSubpassDependency dependencies[2] = {};
     VkSubpassDependency& dependency = dependencies[0];
     dependency.srcSubpass = VK_SUBPASS_EXTERNAL;
@@ -38,17 +38,18 @@ Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_fo
     dependency.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
                               VK_PIPELINE_STAGE_TRANSFER_BIT;
     dependency.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                               VK_ACCESS_TRANSFER_READ_BIT;
+                               VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
     dependency.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
     dependency.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
 
-    // ...and this frame's colour must be written before anyone copies it out (headless readback).
+    // ...and this frame's colour must be written before anyone copies it out (headless readback)
+    // or copies into it (a window's opaque UI panels).
     dependencies[1].srcSubpass = 0;
     dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
     dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
 
     return create_render_pass(vk, 2, attachments, subpass, dependencies);
 }

@@ -21,22 +21,6 @@ uint8_t linear_to_srgb(double c) {
     return uint8_t(std::lround(e * 255.0));
 }
 
-// One layout transition of the mip levels [base, base + count).
-void barrier(VkCommandBuffer cmd, VkImage image, uint32_t base, uint32_t count, VkImageLayout from, VkImageLayout to,
-             VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-             VkPipelineStageFlags dst_stage) {
-    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    b.srcAccessMask = src_access;
-    b.dstAccessMask = dst_access;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base, count, 0, 1};
-    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
-}
-
 constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_SRGB;
 
 bool can_blit_linear(const VulkanContext& vk) {
@@ -110,12 +94,12 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
     const VkImage image = t.image.image;
     vk.run_once([&](VkCommandBuffer cmd) {
         const auto transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+        image_barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, transfer);
         vkCmdCopyBufferToImage(cmd, staging.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies.size()),
                                copies.data());
         const auto to_shader = [&](uint32_t level, VkImageLayout from, VkAccessFlags access) {
-            barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
+            image_barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
                     VK_ACCESS_SHADER_READ_BIT, transfer, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
         };
         if (!gpu_mips) {
@@ -127,7 +111,7 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
         // exactly the 2×2 box in linear colour (the blit decodes sRGB, filters, encodes).
         int32_t w = int32_t(t.width), h = int32_t(t.height);
         for (uint32_t level = 1; level < t.levels; ++level) {
-            barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+            image_barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, transfer, transfer);
             const int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
             VkImageBlit blit{};

@@ -165,9 +165,22 @@ void Window::wait_events(double timeout_seconds) const { glfwWaitEventsTimeout(t
 
 // ---------------------------------------------------------------- WindowTarget
 
+namespace {
+// Whether swapchain images may be made with TRANSFER_DST usage (the UI copies panels into them).
+bool surface_accepts_copies(const VulkanContext& vk) {
+    VkSurfaceCapabilitiesKHR caps;
+    VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(vk.physical_device(), vk.surface(), &caps));
+    return (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT) != 0;
+}
+}  // namespace
+
+// With copies, the render pass leaves the image ready for them and end_frame() hands it to
+// presentation afterwards; without, the pass leaves it ready for presentation.
 WindowTarget::WindowTarget(const VulkanContext& vk, Window& window)
-    : vk_(vk), window_(window), surface_format_(choose_surface_format(vk)),
-      render_pass_(make_render_pass(vk, surface_format_.format, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)), slots_(vk) {
+    : vk_(vk), window_(window), surface_format_(choose_surface_format(vk)), accepts_copies_(surface_accepts_copies(vk)),
+      render_pass_(make_render_pass(vk, surface_format_.format,
+                                    accepts_copies_ ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)),
+      slots_(vk) {
     for (auto& s : image_available_) s = make_semaphore(vk.device());
     stale_ = !create_swapchain();  // a window that starts minimized gets its swapchain later
 }
@@ -215,7 +228,7 @@ bool WindowTarget::create_swapchain() {
     info.imageColorSpace = surface_format_.colorSpace;
     info.imageExtent = extent;
     info.imageArrayLayers = 1;
-    info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (accepts_copies_ ? VK_IMAGE_USAGE_TRANSFER_DST_BIT : 0);
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = choose_composite_alpha(caps.supportedCompositeAlpha);
@@ -333,9 +346,19 @@ bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame, cons
     return true;
 }
 
-void WindowTarget::end_frame() {
+void WindowTarget::end_frame(const AfterPass& after_pass) {
     VkCommandBuffer cmd = slots_.command_buffer(slot_);
     vkCmdEndRenderPass(cmd);
+    if (accepts_copies_) {
+        const VkImage image = images_[image_index_];
+        if (after_pass) after_pass(cmd, image);
+        // Copies done (the pass's own dependency ordered them after its colour writes): from
+        // TRANSFER_DST_OPTIMAL to the layout presentation needs (it waits on the render-finished
+        // semaphore, so no access to make visible).
+        image_barrier(cmd, image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+    }
     VK_CHECK(vkEndCommandBuffer(cmd));
 
     VkSemaphore wait = image_available_[slot_];

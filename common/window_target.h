@@ -74,8 +74,17 @@ public:
 
     VkRenderPass render_pass() const override { return render_pass_; }
     VkExtent2D extent() const override { return extent_; }
+    VkFormat color_format() const { return surface_format_.format; }
     bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) override;
-    void end_frame() override;
+    void end_frame() override { end_frame(AfterPass{}); }
+
+    // Commands recorded after the render pass, with the frame's swapchain image in
+    // TRANSFER_DST_OPTIMAL layout (the UI copies its opaque panels there, imgui_renderer.h).
+    using AfterPass = std::function<void(VkCommandBuffer cmd, VkImage image)>;
+    // Whether the swapchain images accept transfers (the surface allows TRANSFER_DST usage); if
+    // not, `after_pass` is not called.
+    bool accepts_copies() const { return accepts_copies_; }
+    void end_frame(const AfterPass& after_pass);
     uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
     // Blocks until the last frame drawn in frame slot `slot` (Frame::slot) has finished: window
     // benchmarks time frames the way headless ones do.
@@ -91,6 +100,7 @@ private:
     const VulkanContext& vk_;
     Window& window_;
     VkSurfaceFormatKHR surface_format_{};
+    bool accepts_copies_ = false;  // swapchain images made with TRANSFER_DST usage
     Handle<VkRenderPass> render_pass_;
     VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
     VkExtent2D extent_{};
