@@ -226,15 +226,17 @@ bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
         phase_ms_[i] += std::chrono::duration<double, std::milli>(now - mark).count();
         mark = now;
     };
-    // The UI is built and, if it changed, drawn into its overlay before the frame's render pass
-    // (after the lab's own commands outside the pass, such as lab 4's shadow maps); inside the
-    // pass the overlay is blended over the lab's picture (imgui_renderer.h).
+    // The UI is built first: nothing of the frame is recorded yet, so a panel may replace what
+    // the lab draws with (a new renderer). Then the lab's own commands outside the pass (lab 4's
+    // shadow maps), then the overlay, redrawn if the UI changed; its translucent edges are blended
+    // over the lab's picture inside the pass, its opaque panels copied in after it (imgui_renderer.h).
     const BeforePass before_pass = [&](const Frame& begun) {
         phase(0);
-        if (cb.before_pass) cb.before_pass(begun);
-        phase(2);
         ui_->new_frame(*window_, ui_dt);
         cb.ui();
+        phase(1);
+        if (cb.before_pass) cb.before_pass(begun);
+        phase(2);
         ui_->prepare(begun.cmd, begun.slot, begun.extent);
         phase(1);
     };

@@ -45,7 +45,7 @@ class LabApp {
 public:
     struct Callbacks {
         std::function<void(float dt_seconds)> update;          // input and animation
-        std::function<void()> ui;                              // ImGui panels (window mode only)
+        std::function<void()> ui;  // ImGui panels (window mode only), before anything of the frame is recorded
         std::function<void(const Frame&)> record;              // draw commands inside the render pass
         std::function<glm::vec3()> background;                 // clear colour (linear RGB)
         BeforePass before_pass;  // optional: commands before the render pass (lab 4's shadow maps)

@@ -38,11 +38,13 @@ void fit_depth(const std::vector<Box>& casters, const std::vector<Box>& receiver
     n = std::clamp(n * 0.99, f * kMinNearRatio, f * 0.5);
     f *= 1.01;
 }
-}  // namespace
 
+// A view matrix's up vector for a camera looking along `direction`: world +Y, unless the
+// direction is (nearly) ±Y itself, where cross(direction, up) would vanish: then +Z.
 glm::dvec3 up_for(const glm::dvec3& direction) {
     return std::abs(unit_or_down(direction).y) > 0.999 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(0.0, 1.0, 0.0);
 }
+}  // namespace
 
 LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>& casters, const std::vector<Box>& receivers) {
     const glm::dvec3 d = unit_or_down(direction);

@@ -15,10 +15,6 @@
 
 using lab::Box;  // an axis-aligned bounding box in world space
 
-// A view matrix's up vector for a camera looking along `direction`: world +Y, unless the
-// direction is (nearly) ±Y itself, where cross(direction, up) would vanish: then +Z.
-glm::dvec3 up_for(const glm::dvec3& direction);
-
 // The light's map as the shaders use it: world → the map's clip space; for a point light the
 // six faces (+X, −X, +Y, −Y, +Z, −Z); near/far of the perspective maps; world size of one
 // texel at distance 1 (perspective) or anywhere (orthographic), for a map of 1 texel.

@@ -28,7 +28,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 
 namespace {
@@ -122,7 +121,7 @@ int main(int argc, char** argv) {
         Controls controls;
         Lighting lighting = Lighting::from_scene(scene);
         const char* animate = std::getenv("LAB_ANIMATE_LIGHTS");
-        lighting.animate_lights = animate && std::strcmp(animate, "1") == 0;
+        lighting.animate_lights = animate && std::string(animate) == "1";
         if (const char* view = std::getenv("LAB_SHADOW_VIEW")) lighting.shadow_view = std::atoi(view);  // headless pictures
         auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, LAB_SHADER_DIR);
         lab::SceneReloader reloader(app.options().scene, scene);
@@ -134,9 +133,6 @@ int main(int argc, char** argv) {
             renderer = std::move(next);
             lighting = std::move(reloaded);
         };
-        // Lab 4: the panels' changes that need a new renderer are made before the next frame: by
-        // the time the panels run, this frame's shadow passes are recorded with the current one.
-        bool renew = false;
 
         app.run({
             [&](float dt) {
@@ -147,20 +143,18 @@ int main(int argc, char** argv) {
                     animate_lights(lighting, dt);
                     app.request_redraw();
                 }
-                if (renew || !renderer->shadows_match(lighting)) {  // new maps, samplers, shadow maps
-                    auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, LAB_SHADER_DIR);
-                    app.wait_idle();
-                    renderer = std::move(next);
-                    renew = false;
-                    app.request_redraw();
-                }
             },
             [&] {
                 camera_panel(app, camera, controls, reloader);
                 lighting_panel(lighting);
-                // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
-                if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms())) renew = true;
-                shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_map_renders());
+                shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_map_renders());  // lab 4
+                if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms()) ||
+                    !renderer->shadows_match(lighting)) {  // lab 4: or other lights cast shadows, other resolutions
+                    // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
+                    auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, LAB_SHADER_DIR);
+                    app.wait_idle();
+                    renderer = std::move(next);
+                }
             },
             [&](const lab::Frame& frame) {
                 const double aspect = double(frame.extent.width) / double(frame.extent.height);

@@ -52,10 +52,10 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
 
     // Opaque casters: depth only — position-only vertex input, no fragment shader, no colour.
     const lab::Handle<VkShaderModule> vertex_shader = lab::load_shader(vk, shader_dir, "shadow.vert");
-    opaque_ = lab::PipelineBuilder()
+    lab::PipelineBuilder casters;  // what every shadow pipeline shares
+    casters.vertex_attributes(lab::kPosition).push_constants(kBoth, sizeof(ShadowConstants));
+    opaque_ = lab::PipelineBuilder(casters)
                   .shaders(vertex_shader, VK_NULL_HANDLE)
-                  .vertex_attributes(lab::kPosition)
-                  .push_constants(kBoth, sizeof(ShadowConstants))
                   .cull(VK_CULL_MODE_NONE)  // a plane casts from either side
                   .color_attachments(0)
                   .dynamic_depth_bias()
@@ -71,11 +71,8 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
             const VkPipelineColorBlendAttachmentState r{VK_TRUE, VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_SRC_COLOR, VK_BLEND_OP_ADD,
                                                         VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
                                                         VK_COLOR_COMPONENT_R_BIT};
-            lab::PipelineBuilder builder;
-            builder.shaders(vertex_shader, translucent_shader)
-                .vertex_attributes(lab::kPosition)
-                .push_constants(kBoth, sizeof(ShadowConstants))
-                .cull(back);
+            lab::PipelineBuilder builder = casters;
+            builder.shaders(vertex_shader, translucent_shader).cull(back);
             nearest_[cube] = builder.color_blend(g).depth(true, true).build(vk, translucent_pass_);
             multiply_[cube] = builder.color_blend(r).depth(false, false).build(vk, translucent_pass_);
         }
@@ -126,15 +123,12 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
     return m;
 }
 
+// 3: GpuShadows; per slot: 4, 5: 2D depth (nearest, comparison), 6, 7: cube depth (nearest,
+// comparison), 8, 9: transmittance (2D, cube).
 std::vector<lab::DescriptorBinding> ShadowMaps::bindings() {
-    const VkDescriptorType image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    return {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBoth},  // 3: GpuShadows
-            {image, kBoth, kMaxShadowLights},            // 4: 2D depth, nearest
-            {image, kBoth, kMaxShadowLights},            // 5: 2D depth, comparison
-            {image, kBoth, kMaxShadowLights},            // 6: cube depth, nearest
-            {image, kBoth, kMaxShadowLights},            // 7: cube depth, comparison
-            {image, kBoth, kMaxShadowLights},            // 8: 2D transmittance
-            {image, kBoth, kMaxShadowLights}};           // 9: cube transmittance
+    std::vector<lab::DescriptorBinding> bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBoth}};
+    bindings.resize(7, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kBoth, kMaxShadowLights});
+    return bindings;
 }
 
 void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const {
@@ -194,9 +188,8 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
             ++renders_;
         }
         // Only the lookup's numbers: the map still holds what they describe.
-        GpuShadow gpu = map.gpu;
-        gpu.params.x *= light.shadow.normal_offset / float(map.depth.size);
-        out->slot[slot] = gpu;
+        (*out)[slot] = map.gpu;
+        (*out)[slot].params.x *= light.shadow.normal_offset / float(map.depth.size);
     }
 }
 

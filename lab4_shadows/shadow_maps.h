@@ -23,9 +23,7 @@ struct GpuShadow {
     glm::vec4 position;         // xyz: the light
     glm::vec4 params;           // x: normal offset (world; perspective: per unit distance), y, z: depth = y − z / distance
 };
-struct GpuShadows {
-    GpuShadow slot[kMaxShadowLights];
-};
+using GpuShadows = std::array<GpuShadow, kMaxShadowLights>;  // [slot]
 
 // An object as the shadow pass sees it.
 struct Caster {
