@@ -152,10 +152,9 @@ void LabApp::run_window(const Callbacks& cb) {
     while (!window_->should_close()) {
         // Sleep until an event (or the periodic wake) when there is nothing to draw.
         const bool slept = !measured && !continuous_rendering_ && policy.may_sleep();
-        if (slept) {
-            static_cast<WindowTarget&>(*target_).flush();  // the last frame is shown before sleeping
+        if (slept)
             window_->wait_events(RedrawPolicy::kWakeSeconds);
-        } else
+        else
             glfwPollEvents();
         const auto woke = Clock::now();
         poll_input();
@@ -198,7 +197,6 @@ void LabApp::run_window(const Callbacks& cb) {
         }
         if (measured && frame_count >= to_draw) break;  // --frames N: screenshots, tests
     }
-    static_cast<WindowTarget&>(*target_).flush();
     wait_idle();
     if (options_.benchmark > 0 && !frame_ms.empty()) {
         print_benchmark("window", frame_ms);

@@ -180,14 +180,13 @@ WindowTarget::WindowTarget(const VulkanContext& vk, Window& window)
     : vk_(vk), window_(window), surface_format_(choose_surface_format(vk)), accepts_copies_(surface_accepts_copies(vk)),
       render_pass_(make_render_pass(vk, surface_format_.format,
                                     accepts_copies_ ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)),
-      slots_(vk), present_late_(vk.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+      slots_(vk) {
     for (auto& s : image_available_) s = make_semaphore(vk.device());
     stale_ = !create_swapchain();  // a window that starts minimized gets its swapchain later
 }
 
 WindowTarget::~WindowTarget() {
-    if (pending_ >= 0) queue_present(uint32_t(pending_));  // the last frame; nothing to report: the run is over
-    vkDeviceWaitIdle(vk_.device());
+    vkDeviceWaitIdle(vk_.device());  // nothing to report from a destructor; the run is over
     destroy_swapchain_images();
     if (swapchain_) vkDestroySwapchainKHR(vk_.device(), swapchain_, nullptr);
     retired_.clear();
@@ -218,7 +217,7 @@ bool WindowTarget::create_swapchain() {
     // old swapchain (if any) and try again on a later frame.
     if (extent.width == 0 || extent.height == 0) return false;
 
-    uint32_t image_count = caps.minImageCount + 1;  // one to spare (see present_late_)
+    uint32_t image_count = caps.minImageCount + 1;
     if (caps.maxImageCount > 0) image_count = std::min(image_count, caps.maxImageCount);
 
     VkSwapchainKHR old = swapchain_;
@@ -260,7 +259,6 @@ bool WindowTarget::create_swapchain() {
     VK_CHECK(vkGetSwapchainImagesKHR(device, swapchain_, &count, nullptr));
     images_.resize(count);
     VK_CHECK(vkGetSwapchainImagesKHR(device, swapchain_, &count, images_.data()));
-    spare_image_ = count > caps.minImageCount;
 
     depth_ = create_image_2d(vk_, extent_, vk_.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                              VK_IMAGE_ASPECT_DEPTH_BIT);
@@ -289,7 +287,6 @@ void WindowTarget::destroy_swapchain_images() {
 
 bool WindowTarget::recreate_swapchain() {
     // Every path that makes a swapchain goes through create_swapchain(), which refuses 0×0.
-    flush();  // a frame still waiting goes to the old swapchain
     VK_CHECK(vkDeviceWaitIdle(vk_.device()));  // framebuffers and depth are in use by in-flight frames
     if (!create_swapchain()) return false;
     stale_ = false;
@@ -323,7 +320,6 @@ bool WindowTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame, cons
     // A minimized window has a 0×0 framebuffer: draw nothing, wait for events.
     const int w = window_.input().framebuffer_width, h = window_.input().framebuffer_height;  // no round trip
     if (w == 0 || h == 0 || (stale_ && !recreate_swapchain())) {
-        flush();
         glfwWaitEventsTimeout(0.1);
         return false;
     }
@@ -377,37 +373,16 @@ void WindowTarget::end_frame(const AfterPass& after_pass) {
     submit.signalSemaphoreCount = 1;
     submit.pSignalSemaphores = &signal;
     VK_CHECK(vkQueueSubmit(vk_.queue(), 1, &submit, slots_.fence(slot_)));
-    slot_ = (slot_ + 1) % kFramesInFlight;
 
-    if (present_late_ && spare_image_) {
-        flush();  // the previous frame, while this one renders
-        pending_ = int(image_index_);
-    } else {
-        present(image_index_);
-    }
-    if (window_.take_resized()) mark_stale(false);
-}
-
-void WindowTarget::flush() {
-    if (pending_ < 0) return;
-    const uint32_t index = uint32_t(std::exchange(pending_, -1));
-    present(index);
-}
-
-VkResult WindowTarget::queue_present(uint32_t image_index) {
-    VkSemaphore wait = render_finished_[image_index];
     VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
     present.waitSemaphoreCount = 1;
-    present.pWaitSemaphores = &wait;
+    present.pWaitSemaphores = &signal;
     present.swapchainCount = 1;
     present.pSwapchains = &swapchain_;
-    present.pImageIndices = &image_index;
+    present.pImageIndices = &image_index_;
+    const VkResult presented = vkQueuePresentKHR(vk_.queue(), &present);
     ++presents_;
-    return vkQueuePresentKHR(vk_.queue(), &present);
-}
-
-void WindowTarget::present(uint32_t image_index) {
-    const VkResult presented = queue_present(image_index);
+    slot_ = (slot_ + 1) % kFramesInFlight;
     // Errors first, so that a pending resize never hides a lost surface; the swapchain itself is
     // recreated at the start of the next frame.
     if (presented == VK_ERROR_OUT_OF_DATE_KHR)
@@ -416,6 +391,7 @@ void WindowTarget::present(uint32_t image_index) {
         mark_stale(true);
     else if (presented != VK_SUCCESS)
         throw_surface_error("vkQueuePresentKHR", presented);
+    if (window_.take_resized()) mark_stale(false);
 }
 
 }  // namespace lab

@@ -85,9 +85,6 @@ public:
     // not, `after_pass` is not called.
     bool accepts_copies() const { return accepts_copies_; }
     void end_frame(const AfterPass& after_pass);
-    // Presents the frame submitted last if it still waits to be (see `present_late_`): before the
-    // lab sleeps, and at the end. Does nothing otherwise.
-    void flush();
     uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
     // Blocks until the last frame drawn in frame slot `slot` (Frame::slot) has finished: window
     // benchmarks time frames the way headless ones do.
@@ -99,8 +96,6 @@ private:
     bool recreate_swapchain();
     void mark_stale(bool suboptimal);
     void release_retired();
-    VkResult queue_present(uint32_t image_index);  // vkQueuePresentKHR of the image's frame
-    void present(uint32_t image_index);            // ...and what its result means for the swapchain
 
     const VulkanContext& vk_;
     Window& window_;
@@ -122,14 +117,6 @@ private:
     std::array<Handle<VkSemaphore>, kFramesInFlight> image_available_;
     uint32_t slot_ = 0;
     uint32_t image_index_ = 0;
-    // On a CPU device (lavapipe) the frame is presented one frame late: presenting waits until the
-    // frame is rendered and then copies the whole image to the window system, and while it does,
-    // the rasterizer threads would be idle. Submitting frame N before presenting frame N − 1 lets
-    // them render N during that copy. (A GPU presents asynchronously: there it would only add a
-    // frame of latency.) Needs a swapchain with an image to spare for holding two acquired images.
-    const bool present_late_;
-    bool spare_image_ = false;  // this swapchain has more images than its minimum
-    int pending_ = -1;          // the image submitted but not yet presented, or −1
     // Recreation: `stale_` asks for a new swapchain at the next begin_frame(); a surface that
     // stays suboptimal is recreated for once per change (`suboptimal_handled_`).
     bool stale_ = false;
