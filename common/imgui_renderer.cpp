@@ -331,6 +331,16 @@ void ImGuiRenderer::prepare(VkCommandBuffer cmd, uint32_t slot, VkExtent2D exten
     if (same_as_last(draw_data, extent)) return;  // the overlay already shows these panels
     regions_ = find_ui_regions(draw_data, int32_t(extent.width), int32_t(extent.height),
                                ImGui::GetIO().Fonts->TexUvWhitePixel, copy_to_target_);
+    copies_.clear();  // the copy regions as vkCmdCopyImage takes them, reused until the panels change
+    for (const PixelRect& r : regions_.copy) {
+        VkImageCopy copy{};
+        copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.dstSubresource = copy.srcSubresource;
+        copy.srcOffset = {r.x0, r.y0, 0};
+        copy.dstOffset = copy.srcOffset;
+        copy.extent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
+        copies_.push_back(copy);
+    }
     if (!regions_.bounds.empty()) {
         upload(slot, draw_data);
         draw_overlay(cmd, slot, draw_data);
@@ -358,18 +368,7 @@ void ImGuiRenderer::composite(VkCommandBuffer cmd) const {
 }
 
 void ImGuiRenderer::copy_opaque(VkCommandBuffer cmd, VkImage target_image) const {
-    if (regions_.copy.empty()) return;
-    std::vector<VkImageCopy> copies;
-    copies.reserve(regions_.copy.size());
-    for (const PixelRect& r : regions_.copy) {
-        VkImageCopy copy{};
-        copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.dstSubresource = copy.srcSubresource;
-        copy.srcOffset = {r.x0, r.y0, 0};
-        copy.dstOffset = copy.srcOffset;
-        copy.extent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
-        copies.push_back(copy);
-    }
+    if (copies_.empty()) return;
     // The overlay is kept in the layout for sampling; for the copy it moves to the one for copying
     // from, and back (a frame's composite has read it; the next frame's may read it again).
     image_barrier(cmd, overlay_.image, 0, 1, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
@@ -377,7 +376,7 @@ void ImGuiRenderer::copy_opaque(VkCommandBuffer cmd, VkImage target_image) const
                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                   VK_PIPELINE_STAGE_TRANSFER_BIT);
     vkCmdCopyImage(cmd, overlay_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target_image,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies.size()), copies.data());
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies_.size()), copies_.data());
     image_barrier(cmd, overlay_.image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);

@@ -86,7 +86,8 @@ private:
 
     std::vector<uint8_t> last_, current_;  // the draw data drawn last / this frame, as bytes
     bool overlay_valid_ = false;
-    UiRegions regions_;  // which pixels the overlay copies and blends (bounds: the overlay pass's render area)
+    UiRegions regions_;
+    std::vector<VkImageCopy> copies_;  // regions_.copy for vkCmdCopyImage  // which pixels the overlay copies and blends (bounds: the overlay pass's render area)
     uint64_t redraws_ = 0;
 };
 

@@ -93,13 +93,6 @@ ref::CompareOptions lit_options(const lab::Scene& scene) {
     return options;
 }
 
-size_t magenta_pixels(const lab::Image8& image) {
-    size_t n = 0;
-    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
-        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
-    return n;
-}
-
 // Renders `scene_file` with the lab and checks it against the reference. Returns the result
 // (and the image through `actual`) for further reporting.
 ref::CompareResult expect_matches_reference(const std::string& scene_file, const std::string& name,
@@ -112,7 +105,7 @@ ref::CompareResult expect_matches_reference(const std::string& scene_file, const
     size_t covered = 0;
     for (int id : reference.object_id) covered += id >= 0;
     EXPECT_GT(covered, reference.object_id.size() / 20) << "test scene shows almost nothing";
-    EXPECT_EQ(magenta_pixels(actual), 0u) << "NaN/Inf marker color in " << png;
+    EXPECT_EQ(ref::magenta_pixels(actual), 0u) << "NaN/Inf marker color in " << png;
 
     const ref::CompareResult result =
         ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png", lit_options(scene));
@@ -242,7 +235,7 @@ TEST_P(Lab2StressModels, NoNaN) {
                                      R"({"nan_check": "on", "model": ")" + model + R"(", "shading": ")" + shading + "\"}");
     const std::string png = render_with_lab(file, name);
     if (png.empty()) return;
-    EXPECT_EQ(magenta_pixels(lab::read_png(png)), 0u) << "NaN/Inf reached a pixel: " << png;
+    EXPECT_EQ(ref::magenta_pixels(lab::read_png(png)), 0u) << "NaN/Inf reached a pixel: " << png;
 }
 INSTANTIATE_TEST_SUITE_P(AllModels, Lab2StressModels,
                          ::testing::Combine(::testing::Values<std::string>("lambert", "phong", "blinn_phong", "toon", "oren_nayar",
@@ -259,7 +252,7 @@ TEST(Lab2Stress, DetectorFiresOnInjectedNaN) {
     size_t covered = 0;
     for (int id : reference.object_id) covered += id >= 0;
     // Every drawn pixel is magenta; silhouette pixels may go either way.
-    EXPECT_GT(magenta_pixels(lab::read_png(png)), covered * 95 / 100);
+    EXPECT_GT(ref::magenta_pixels(lab::read_png(png)), covered * 95 / 100);
 }
 
 }  // namespace

@@ -93,13 +93,6 @@ std::string render(const std::string& scene, const std::string& name, int w = kW
     return r.exit_code == 0 && fs::exists(png) ? png : "";
 }
 
-size_t magenta_pixels(const lab::Image8& image) {
-    size_t n = 0;
-    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
-        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
-    return n;
-}
-
 struct Verdict {
     size_t magnified = 0, magnified_bad = 0, minified = 0, minified_bad = 0;
     int magnified_max = 0;
@@ -216,9 +209,9 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
     const std::vector<uint8_t> mask = ref::edge_mask(reference, options);
     const lab::Image8 expected = ref::encode_srgb(reference);
     if (checkerboard_expected)
-        EXPECT_GT(magenta_pixels(actual), 1000u) << "no magenta/black checkerboard in " << png;
+        EXPECT_GT(ref::magenta_pixels(actual), 1000u) << "no magenta/black checkerboard in " << png;
     else
-        EXPECT_EQ(magenta_pixels(actual), 0u) << "NaN/Inf (or the missing-image checkerboard) in " << png;
+        EXPECT_EQ(ref::magenta_pixels(actual), 0u) << "NaN/Inf (or the missing-image checkerboard) in " << png;
     const Envelope envelope = sampling_envelope(scene, reference);
     size_t covered = 0;
     for (size_t p = 0; p < mask.size(); ++p) {
@@ -523,7 +516,7 @@ TEST(Lab3Stress, NonPowerOfTwoMipChain) {
                                          R"([{"mesh": "plane", "material": "floor", "scale": [40, 1, 40]}])", kFloorCamera);
     const std::string png = render(file, "npot");
     ASSERT_FALSE(png.empty());
-    EXPECT_EQ(magenta_pixels(lab::read_png(png)), 0u);
+    EXPECT_EQ(ref::magenta_pixels(lab::read_png(png)), 0u);
 }
 
 TEST(Lab3Stress, DegenerateTriangleAndEdgeOnAnisotropy) {
@@ -541,7 +534,7 @@ TEST(Lab3Stress, DegenerateTriangleAndEdgeOnAnisotropy) {
                     R"({"position": [0, 0.5, 2.5], "target": [0, 0.5, 0]})");
     const std::string png = render(file, "degenerate");
     ASSERT_FALSE(png.empty());
-    EXPECT_EQ(magenta_pixels(lab::read_png(png)), 0u);
+    EXPECT_EQ(ref::magenta_pixels(lab::read_png(png)), 0u);
     const std::string tilted = write_scene("degenerate_ref", R"({"m": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 1}}})",
                                            R"([{"mesh": ")" + kOutDir + R"(/degenerate.obj", "material": "m"}])");
     expect_matches(tilted, "degenerate_ref");

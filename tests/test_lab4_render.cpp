@@ -91,13 +91,6 @@ RunResult run(const std::string& scene_file, const std::string& name, int w = kW
                    kOutDir + "/" + name + ".log");
 }
 
-size_t magenta_pixels(const lab::Image8& image) {
-    size_t n = 0;
-    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
-        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
-    return n;
-}
-
 // Renders `scene` with the lab (exit 0, validation clean, no NaN) and the reference.
 struct Judged {
     bool ok = false;
@@ -114,7 +107,7 @@ Judged judge(const std::string& name, const json& scene, int band = kBand) {
     const std::string png = kOutDir + "/" + name + ".png";
     if (r.exit_code != 0 || !fs::exists(png)) return j;
     j.actual = lab::read_png(png);
-    EXPECT_EQ(magenta_pixels(j.actual), 0u) << "NaN/Inf in " << png;
+    EXPECT_EQ(ref::magenta_pixels(j.actual), 0u) << "NaN/Inf in " << png;
     const lab::Scene s = lab::load_scene(file);
     j.reference = ref::render_shadow_reference(s, kWidth, kHeight);
     j.shadowed = ref::encode_srgb(j.reference.shadowed);
@@ -339,7 +332,7 @@ void expect_survives(const std::string& name, const json& scene, int w = 160, in
     const std::string png = kOutDir + "/" + name + ".png";
     if (r.exit_code != 0 || !fs::exists(png)) return;
     const lab::Image8 image = lab::read_png(png);
-    EXPECT_EQ(magenta_pixels(image), 0u) << "NaN/Inf in " << png;
+    EXPECT_EQ(ref::magenta_pixels(image), 0u) << "NaN/Inf in " << png;
     int brightest = 0;
     for (size_t i = 0; i < image.rgba.size(); i += 4)
         brightest = std::max({brightest, int(image.rgba[i]), int(image.rgba[i + 1]), int(image.rgba[i + 2])});

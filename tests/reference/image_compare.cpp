@@ -473,4 +473,11 @@ lab::Image8 shadow_metric_picture(const lab::Image8& shadowed, const ShadowMetri
     return out;
 }
 
+size_t magenta_pixels(const lab::Image8& image) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+        n += image.rgba[i] == 255 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 255;
+    return n;
+}
+
 }  // namespace ref

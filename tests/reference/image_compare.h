@@ -94,6 +94,10 @@ glm::dvec3 srgb8_to_lab(const uint8_t rgb[3]);
 // about 1 is a just-noticeable difference.
 double ciede2000(const glm::dvec3& lab1, const glm::dvec3& lab2);
 
+// Pixels of exactly (255, 0, 255): the labs' NaN/Inf detector paints them (and lab 3 its
+// missing-image checkerboard).
+size_t magenta_pixels(const lab::Image8& image);
+
 // Edges of an image seen from its colours alone (no object ids needed): a pixel whose
 // 3×3 neighbourhood holds a colour more than `threshold`/255 away in some channel
 // (silhouettes against the background or another object, hard shading edges).
