@@ -172,6 +172,7 @@ void LabApp::run_window(const Callbacks& cb) {
             wait_idle();
             give_back_free_memory();
             drawn_at_trim = frame_count;
+            if (status_) status_->went_idle();
         }
         if (slept)
             window_->wait_events(RedrawPolicy::kWakeSeconds);
