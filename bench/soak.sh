@@ -18,15 +18,16 @@
 # the new size — and a scene write shows "reloaded" on stdout or "reload failed" on stderr. So the
 # soak also works for a lab that draws only when something happens: every input wakes it.
 # Resident memory (VmRSS) is read at rest — after every input answered by a frame drawn, so the
-# renderer in use has drawn at least once — and, for the record, every SOAK_SAMPLE_S seconds
-# (default 3).
+# renderer in use has drawn at least once, and once the lab has gone idle after it (its status line
+# ends in " idle": frames finished, freed memory given back with malloc_trim) — and, for the record,
+# every SOAK_SAMPLE_S seconds (default 3).
 #
 # Pass: no crash; every input answered; no validation message (the lab, closed with Alt+F4 at the
 # end, exits 0; it exits 1 after any message) and nothing unexpected on stderr; resident memory
 # after the warm-up — the first minute, or the first third of a shorter run — grows by less than
-# 1 % (SOAK_MEMORY_GATE; after the warm-up: the median of the last quarter of the samples at rest,
-# at least five, against the median of the first quarter; only samples taken with the same scene
-# variant loaded — the one seen most often — are compared; at least SOAK_MIN_SAMPLES, default 10).
+# 1 % (SOAK_MEMORY_GATE; the samples at rest of the last quarter of the time after the warm-up
+# against those of the first quarter, each divided by the usual level of the scene variant it was
+# taken with: bench/soak_memory.awk; at least SOAK_MIN_SAMPLES after the warm-up, default 10).
 # Prints the figures per lab; exit 0 when every lab passed, 1 otherwise, 2 for bad usage.
 # SOAK_KEEP=1 keeps each lab's folder (logs, the RSS samples, the inputs with their times) even
 # when it passed. For finding where memory goes: SOAK_ACTIONS="scene reload" (only those inputs;
@@ -363,29 +364,13 @@ soak_lab() {
   local unexpected; unexpected="$(grep -v '^reload failed, keeping the last good scene: ' "$work/stderr" || true)"
   if [[ -z "$failure" && -n "$unexpected" ]]; then fail "unexpected stderr: $(head -3 <<<"$unexpected")"; fi
 
-  # ---- memory: after the warm-up, the median of the first quarter of the samples (at least five)
-  # against the median of the last quarter. Medians, because resident memory swings by about an
-  # image (a megabyte) between samples depending on what is allocated at that moment.
-  # memory_figures FILE MIN [by-scene]: growth from "time rss ..." lines. by-scene (the samples at
-  # rest, "time rss scene"): only the samples taken while the scene variant seen most often after
-  # the warm-up was loaded count, so like is compared with like (lab 4 without shadow maps is about
-  # 100 MB lighter). MIN: the fewest samples after the warm-up that give a figure.
+  # ---- memory: after the warm-up, the first quarter of the time against the last, each sample
+  # compared with the usual level of the scene variant it was taken with (bench/soak_memory.awk).
+  # memory_figures FILE MIN [by-scene]: FILE has "time rss [scene]" lines; MIN: the fewest samples
+  # after the warm-up that give a figure.
   memory_figures() {
-    awk -v t0="$started" -v warm="$warmup" -v min="$2" -v by_scene="${3:-}" '
-    function median(a, n,   i, j, t) { for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
-                                      return a[int((n + 1) / 2)] }
-    { t = $1 - t0; if (t < 0) next; n_all++; if ($2 > peak) peak = $2; if (n_all == 1) first = $2
-      if (t >= warm) { n++; rss[n] = $2; scene[n] = by_scene ? $3 : ""; seen[scene[n]]++ } }
-    END {
-      bestn = -1; for (s in seen) if (seen[s] > bestn) { bestn = seen[s]; best = s }
-      for (i = 1; i <= n; i++) if (scene[i] == best) { m++; v[m] = rss[i]; if (m == 1 || rss[i] < low) low = rss[i] }
-      if (m < min) { printf "too few samples after the warm-up (%d%s)", m, best == "" ? "" : " with " best " loaded"; exit 1 }
-      k = int(m / 4); if (k < 5) k = 5; if (k > m) k = m
-      for (i = 1; i <= k; i++) { a[i] = v[i]; b[i] = v[m - k + i] }
-      base = median(a, k); last = median(b, k)
-      printf "rss_start_kib=%d rss_after_warmup_kib=%d rss_end_kib=%d rss_min_kib=%d rss_peak_kib=%d growth_pct=%.3f samples=%d window=%d%s",
-             first, base, last, low, peak, 100 * (last - base) / base, n_all, k, best == "" ? "" : " scene=" best " (" m " samples)"
-    }' "$1"
+    awk -v t0="$started" -v warm="$warmup" -v min="$2" -v by_scene="$([[ "${3:-}" == by-scene ]] && echo 1 || echo 0)" \
+        -f "$root/bench/soak_memory.awk" "$1"
   }
   # Gated: the samples at rest. Reported: the samples every SOAK_SAMPLE_S seconds.
   local figures sampled
