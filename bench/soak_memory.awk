@@ -56,15 +56,13 @@ END {
   for (i = 1; i <= n; i++) if (time[i] < time[1] + quarter || na < k) { na++; a[na] = ratio[i] }
   for (i = n; i >= 1; i--) if (time[i] > time[n] - quarter || nb < k) { nb++; b[nb] = ratio[i] }
   growth = 100 * (median(b, nb) / median(a, na) - 1)
+  printf "rss_start_kib=%d rss_min_kib=%d rss_peak_kib=%d growth_pct=%.3f samples=%d quarters=%d/%d",
+         first, low, peak, growth, n_all, na, nb
+  if (!by_scene) { printf " rss_after_warmup_kib=%d rss_end_kib=%d", median(a, na) * level["-"], median(b, nb) * level["-"]; exit }
   # The most-seen variant alone (its first and last quarter of samples, at least 5): for the record.
   m = best_n; q = int(m / 4); if (q < 5) q = 5; if (q > m) q = m
   for (i = 1; i <= q; i++) { c[i] = of[best, i]; d[i] = of[best, m - q + i] }
   base = median(c, q); last = median(d, q)
-  printf "rss_start_kib=%d rss_min_kib=%d rss_peak_kib=%d growth_pct=%.3f samples=%d quarters=%d/%d",
-         first, low, peak, growth, n_all, na, nb
-  if (by_scene)
-    printf " variants=%d; most seen alone: scene=%s (%d samples) %d -> %d KiB, %+.3f %%",
-           variants, best, m, base, last, 100 * (last - base) / base
-  else
-    printf " rss_after_warmup_kib=%d rss_end_kib=%d", median(a, na) * level["-"], median(b, nb) * level["-"]
+  printf " variants=%d; most seen alone: scene=%s (%d samples) %d -> %d KiB, %+.3f %%",
+         variants, best, m, base, last, 100 * (last - base) / base
 }

@@ -6,8 +6,8 @@ set -euo pipefail
 awk_file="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/bench/soak_memory.awk"
 work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
 failures=0
-check() {  # NAME GOT_PCT OP LIMIT (OP: < > ~ equal, +- within ±LIMIT)
-  if awk -v g="$2" -v l="$4" -v op="$3" 'BEGIN { exit !((op == "<" && g < l) || (op == ">" && g > l) || (op == "~" && g - l < 0.001 && l - g < 0.001) || (op == "+-" && g < l && -g < l)) }'; then
+check() {  # NAME GOT_PCT OP LIMIT (OP: > above, ~ equal, +- within ±LIMIT)
+  if awk -v g="$2" -v l="$4" -v op="$3" 'BEGIN { exit !((op == ">" && g > l) || (op == "~" && g - l < 0.001 && l - g < 0.001) || (op == "+-" && g < l && -g < l)) }'; then
     echo "ok   $1: $2 % ($3 $4)"
   else
     echo "FAIL $1: $2 % (expected $3 $4)"; failures=$((failures + 1))
