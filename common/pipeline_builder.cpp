@@ -48,6 +48,10 @@ PipelineBuilder& PipelineBuilder::dynamic_depth_bias() {
     depth_bias_ = true;
     return *this;
 }
+PipelineBuilder& PipelineBuilder::depth_clamp(bool enabled) {
+    depth_clamp_ = enabled;
+    return *this;
+}
 PipelineBuilder& PipelineBuilder::color_attachments(uint32_t count) {
     color_attachments_ = count;
     return *this;
@@ -118,6 +122,7 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
     raster.depthBiasEnable = depth_bias_;
+    raster.depthClampEnable = depth_clamp_;
 
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;

@@ -36,6 +36,9 @@ public:
     PipelineBuilder& topology(VkPrimitiveTopology topology);
     // Depth bias on, its constant and slope factors set per draw (vkCmdSetDepthBias).
     PipelineBuilder& dynamic_depth_bias();
+    // Depth clamp (the device feature depthClamp must be enabled): geometry in front of the near
+    // plane or beyond the far plane is not clipped but drawn at depth 0 or 1.
+    PipelineBuilder& depth_clamp(bool enabled);
     // How many colour attachments the subpass has (default 1; 0: depth only), and their blend
     // state when neither the default (opaque) nor alpha_blend() fits.
     PipelineBuilder& color_attachments(uint32_t count);
@@ -63,6 +66,7 @@ private:
     bool depth_write_ = true;
     bool blend_ = false;
     bool depth_bias_ = false;
+    bool depth_clamp_ = false;
     uint32_t color_attachments_ = 1;
     bool custom_blend_ = false;
     VkPipelineColorBlendAttachmentState blend_state_{};

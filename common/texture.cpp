@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace lab {
 namespace {
@@ -21,14 +23,28 @@ uint8_t linear_to_srgb(double c) {
     return uint8_t(std::lround(e * 255.0));
 }
 
-constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_SRGB;
+VkFormat format_of(TexelEncoding encoding) {
+    return encoding == TexelEncoding::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+}
 
-bool can_blit_linear(const VulkanContext& vk) {
+bool can_blit_linear(const VulkanContext& vk, VkFormat format) {
     VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(vk.physical_device(), kFormat, &fp);
+    vkGetPhysicalDeviceFormatProperties(vk.physical_device(), format, &fp);
     const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
                                         VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     return (fp.optimalTilingFeatures & needed) == needed;
+}
+
+// The parent texels a child texel i of `out` covers along one side, with their weights:
+// [i·in/out, (i + 1)·in/out) in parent texels, each weighted by how much of it lies inside.
+std::vector<std::pair<int, double>> footprint(int i, int in, int out) {
+    const double lo = double(i) * in / out, hi = double(i + 1) * in / out;
+    std::vector<std::pair<int, double>> taps;
+    for (int p = int(std::floor(lo)); p < int(std::ceil(hi)) && p < in; ++p) {
+        const double w = std::min(hi, double(p + 1)) - std::max(lo, double(p));
+        if (w > 0.0) taps.emplace_back(p, w / (hi - lo));
+    }
+    return taps;
 }
 
 }  // namespace
@@ -39,40 +55,54 @@ uint32_t mip_level_count(uint32_t width, uint32_t height) {
     return levels;
 }
 
-Image8 downsample_srgb(const Image8& image) {
+bool blit_halves_exactly(uint32_t width, uint32_t height) {
+    return (width % 2 == 0 || width == 1) && (height % 2 == 0 || height == 1);
+}
+
+Image8 downsample(const Image8& image, TexelEncoding encoding) {
     Image8 out;
     out.width = std::max(image.width / 2, 1);
     out.height = std::max(image.height / 2, 1);
     out.rgba.resize(size_t(out.width) * size_t(out.height) * 4);
+    // Decoded once: the parent in linear numbers.
+    std::vector<double> linear(image.rgba.size());
+    for (size_t i = 0; i < image.rgba.size(); ++i)
+        linear[i] = encoding == TexelEncoding::Srgb && i % 4 != 3 ? srgb_to_linear(image.rgba[i]) : image.rgba[i] / 255.0;
+    std::vector<std::vector<std::pair<int, double>>> columns(size_t(out.width)), rows(size_t(out.height));
+    for (int x = 0; x < out.width; ++x) columns[size_t(x)] = footprint(x, image.width, out.width);
+    for (int y = 0; y < out.height; ++y) rows[size_t(y)] = footprint(y, image.height, out.height);
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x)
             for (int c = 0; c < 4; ++c) {
                 double sum = 0.0;
-                for (int dy = 0; dy < 2; ++dy)
-                    for (int dx = 0; dx < 2; ++dx) {
-                        const int sx = std::min(2 * x + dx, image.width - 1), sy = std::min(2 * y + dy, image.height - 1);
-                        const uint8_t v = image.rgba[(size_t(sy) * size_t(image.width) + size_t(sx)) * 4 + size_t(c)];
-                        sum += c == 3 ? v / 255.0 : srgb_to_linear(v);  // alpha is linear already
-                    }
+                for (const auto& [py, wy] : rows[size_t(y)])
+                    for (const auto& [px, wx] : columns[size_t(x)])
+                        sum += wx * wy * linear[(size_t(py) * size_t(image.width) + size_t(px)) * 4 + size_t(c)];
                 out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4 + size_t(c)] =
-                    c == 3 ? uint8_t(std::lround(sum / 4.0 * 255.0)) : linear_to_srgb(sum / 4.0);
+                    encoding == TexelEncoding::Srgb && c != 3 ? linear_to_srgb(sum) : uint8_t(std::lround(std::clamp(sum, 0.0, 1.0) * 255.0));
             }
     return out;
 }
 
-Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source) {
+Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source, TexelEncoding encoding) {
     Texture t;
     t.width = uint32_t(pixels.width);
     t.height = uint32_t(pixels.height);
     t.levels = mipmaps ? mip_level_count(t.width, t.height) : 1;
+    const VkFormat format = format_of(encoding);
     const char* forced = std::getenv("LAB_MIPMAPS");
     if (forced && std::string(forced) == "cpu") source = MipSource::Cpu;
-    const bool gpu_mips = t.levels > 1 && source == MipSource::Auto && can_blit_linear(vk);
+    // Blits only when each level is exactly the 2×2 box of the one above: both sides even (or 1)
+    // at every step. Otherwise (wood.png, 100×60: 25×15 → 12×7 is a 2.08-texel box) the CPU box.
+    bool exact = true;
+    for (uint32_t level = 0, w = t.width, h = t.height; level + 1 < t.levels; ++level, w = std::max(w / 2, 1u), h = std::max(h / 2, 1u))
+        exact = exact && blit_halves_exactly(w, h);
+    const bool gpu_mips = t.levels > 1 && source == MipSource::Auto && exact && can_blit_linear(vk, format);
 
     // The CPU fallback computes every level here; the GPU path uploads level 0 only.
     std::vector<Image8> chain{pixels};
     if (t.levels > 1 && !gpu_mips)
-        while (chain.size() < t.levels) chain.push_back(downsample_srgb(chain.back()));
+        while (chain.size() < t.levels) chain.push_back(downsample(chain.back(), encoding));
     VkDeviceSize bytes = 0;
     for (const Image8& level : chain) bytes += level.rgba.size();
     Buffer staging = Buffer::host_visible(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -88,9 +118,9 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
         offset += chain[level].rgba.size();
     }
 
-    VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    if (gpu_mips) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    t.image = create_image_2d(vk, {t.width, t.height}, kFormat, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
+    // TRANSFER_SRC: the blits read the levels above; tests read every level back.
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    t.image = create_image_2d(vk, {t.width, t.height}, format, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
     const VkImage image = t.image.image;
     vk.run_once([&](VkCommandBuffer cmd) {
         const auto transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
@@ -108,7 +138,7 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
             return;
         }
         // Each level is a linear-filtered blit of the one above at half the size: for even sizes
-        // exactly the 2×2 box in linear colour (the blit decodes sRGB, filters, encodes).
+        // exactly the 2×2 box (an sRGB blit decodes, filters in linear colour, encodes).
         int32_t w = int32_t(t.width), h = int32_t(t.height);
         for (uint32_t level = 1; level < t.levels; ++level) {
             image_barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,

@@ -1,7 +1,9 @@
 // texture.h — textures on the GPU (lab 3): upload with a mip chain, and samplers.
 //
-// Every map is 8-bit RGBA in a *_SRGB format: the sampler decodes sRGB to linear before it
-// filters, so filtering and lighting happen in linear colour (docs/lighting.md).
+// A colour map (albedo, emissive) is 8-bit RGBA in a *_SRGB format: the sampler decodes sRGB to
+// linear before it filters, so filtering and lighting happen in linear colour. A data map
+// (specular: a factor in [0, 1], not a colour) is *_UNORM: its bytes / 255 are the numbers
+// (docs/lighting.md).
 #pragma once
 
 #include "buffer.h"
@@ -17,11 +19,15 @@
 namespace lab {
 
 // How the mip chain is made: blits on the GPU (vkCmdBlitImage, linear filter) when the format
-// supports linear blits, else a 2×2 box filter in linear colour on the CPU.
+// supports linear blits and every level halves both sides exactly, else the box filter below on
+// the CPU. (A linear blit from an odd size samples two texels where the box needs three.)
 enum class MipSource { Auto, Cpu };
 
+// What a map's texels are: a colour (sRGB-encoded) or data (linear numbers).
+enum class TexelEncoding { Srgb, Linear };
+
 struct Texture {
-    Image image;  // VK_FORMAT_R8G8B8A8_SRGB, SHADER_READ_ONLY_OPTIMAL, the view covers every level
+    Image image;  // R8G8B8A8 _SRGB or _UNORM, SHADER_READ_ONLY_OPTIMAL, the view covers every level
     uint32_t width = 0;
     uint32_t height = 0;
     uint32_t levels = 1;
@@ -30,14 +36,19 @@ struct Texture {
 // floor(log2(max(width, height))) + 1: levels down to 1×1.
 uint32_t mip_level_count(uint32_t width, uint32_t height);
 
-// The next level of `image` on the CPU: each texel the mean of its 2×2 parent texels in linear
-// colour (an odd last row / column is averaged with itself), re-encoded to sRGB.
-Image8 downsample_srgb(const Image8& image);
+// The next level of `image` on the CPU: the box filter. Level size max(⌊w/2⌋, 1) × max(⌊h/2⌋, 1);
+// each texel is the mean of the parent area it covers, w/⌊w/2⌋ × h/⌊h/2⌋ texels, with partly
+// covered texels weighted by the part (an even side: 2 texels; 3 → 1: all three; 5 → 2: 1, 1, ½).
+// sRGB is decoded to linear before averaging and encoded after; alpha and linear data as they are.
+Image8 downsample(const Image8& image, TexelEncoding encoding);
+// True when a linear blit makes exactly that level from `width` × `height`: each side even, or 1.
+bool blit_halves_exactly(uint32_t width, uint32_t height);
 
 // Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain. The
 // environment variable LAB_MIPMAPS=cpu forces the CPU fallback (so tests can run that path on a
 // device that has linear blits).
-Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto);
+Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto,
+                       TexelEncoding encoding = TexelEncoding::Srgb);
 
 // One VkSampler per distinct SamplerDesc. Anisotropy is clamped to the device limit (or off
 // when the device lacks the feature) with one warning line each time a request is clamped.

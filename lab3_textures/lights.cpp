@@ -101,11 +101,18 @@ void Lighting::pack_materials(GpuMaterial* out) const {
                                       ? glm::dvec2(m.uv_offset)
                                       : glm::mod(glm::dvec2(m.uv_offset), period);
         const lab::DistortionDesc& d = m.distortion;
+        // Distorted sampling sees the whole offset: the removed repeats w shift its sine's phase by
+        // frequency·w and its lookups at scales·uv by scales·w, which are not whole repeats. Both
+        // are reduced here, in double (sin: modulo 2π; lookups: modulo the period).
+        const glm::dvec2 whole = glm::dvec2(m.uv_offset) - offset;
+        const glm::dvec2 phase = glm::mod(glm::dvec2(d.frequency) * glm::dvec2(whole.y, whole.x), 2.0 * kPi);
+        const glm::dvec2 shift1 = glm::mod(double(d.scales.x) * whole, period), shift2 = glm::mod(double(d.scales.y) * whole, period);
         out[i] = {glm::vec4(m.albedo, 1.0f), glm::vec4(m.specular, m.shininess), glm::vec4(m.emissive, 0.0f),
                   glm::vec4(m.f0, m.roughness), glm::vec4(m.roughness_x, m.roughness_y, m.minnaert_k, 0.0f),
                   glm::vec4(m.uv_scale, glm::vec2(offset)),
                   {glm::vec4(d.amplitude, d.frequency), glm::vec4(d.position_frequency, d.scales),
-                   glm::vec4(d.weights, m.emissive_strength, 0.0f)}};
+                   glm::vec4(d.weights, m.emissive_strength, 0.0f), glm::vec4(glm::vec2(phase), 0.0f, 0.0f),
+                   glm::vec4(glm::vec2(shift1), glm::vec2(shift2))}};
     }
 }
 

@@ -95,21 +95,26 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lit_pipeline(variant_of(lighting));  // the scene's own variant, built up front
 }
 
-// Each map image is loaded and uploaded once, however many materials use it, with a mip chain
-// if any of them samples mipmaps. A bad file becomes the checkerboard and one warning line.
+// Each map image is loaded and uploaded once per encoding, however many materials use it, with a
+// mip chain if any of them samples mipmaps. Albedo and emissive maps are colours (sRGB); a
+// specular map is data, a factor in [0, 1] (UNORM: byte / 255, see docs/lighting.md). A bad file
+// becomes the checkerboard and one warning line.
 void Renderer::load_textures(const Lighting& lighting) {
-    std::map<std::string, bool> mipmaps;  // [map]: does any material want its mip chain?
+    using Encoding = lab::TexelEncoding;
+    std::map<TextureKey, bool> mipmaps;  // [map, encoding]: does any material want its mip chain?
     uint32_t textured = 0;
     for (const lab::MaterialDesc& m : lighting.materials) {
         textured += m.has_maps();
-        for (const std::string* map : {&m.albedo_map, &m.specular_map, &m.emissive_map})
-            if (!map->empty()) mipmaps[*map] = mipmaps[*map] || m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::None;
+        const std::pair<const std::string*, Encoding> maps[] = {
+            {&m.albedo_map, Encoding::Srgb}, {&m.specular_map, Encoding::Linear}, {&m.emissive_map, Encoding::Srgb}};
+        for (const auto& [map, encoding] : maps)
+            if (!map->empty()) mipmaps[{*map, encoding}] |= m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::None;
     }
-    for (const auto& [map, mips] : mipmaps) {
-        const lab::TextureLoad load = lab::load_texture_image(map, int(vk_.properties().limits.maxImageDimension2D));
+    for (const auto& [key, mips] : mipmaps) {
+        const lab::TextureLoad load = lab::load_texture_image(key.first, int(vk_.properties().limits.maxImageDimension2D));
         if (!load.warning.empty()) warnings_.push_back(load.warning);
         if (!load.warning.empty()) std::fprintf(stderr, "warning: %s\n", load.warning.c_str());
-        textures_.emplace(map, lab::upload_texture(vk_, load.image, mips));
+        textures_.emplace(key, lab::upload_texture(vk_, load.image, mips, lab::MipSource::Auto, key.second));
     }
     if (textured > 0) {
         white_ = lab::upload_texture(vk_, lab::Image8{1, 1, {255, 255, 255, 255}}, false);
@@ -125,7 +130,10 @@ void Renderer::load_textures(const Lighting& lighting) {
         const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
         for (uint32_t binding = 0; binding < 3; ++binding)  // identical samplers are one VkSampler
             lab::write_image_descriptor(vk_, material_sets_.back(), binding, samplers_.get(m.sampler),
-                                        (maps[binding]->empty() ? white_ : textures_.at(*maps[binding])).image.view);
+                                        (maps[binding]->empty() ? white_
+                                                                : textures_.at({*maps[binding], binding == 1 ? lab::TexelEncoding::Linear
+                                                                                                             : lab::TexelEncoding::Srgb}))
+                                            .image.view);
     }
     warnings_.insert(warnings_.end(), samplers_.warnings().begin(), samplers_.warnings().end());
     if (textured > 0)

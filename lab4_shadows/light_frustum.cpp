@@ -9,8 +9,11 @@
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Perspective maps: the near plane is never closer than this fraction of the far plane (depth
-// precision falls with far / near: at 1000 a 32-bit float map still resolves far·1e-3).
+// precision falls with far / near: at 1000 a 32-bit float map still resolves far·1e-3). A caster
+// closer to the light than that is not lost: the shadow pass clamps its depth to 0 (depth clamp).
 constexpr double kMinNearRatio = 1e-3;
+// Far planes sit this far beyond the farthest caster (a margin for the depth bias).
+constexpr double kFarMargin = 1.5;
 
 glm::dvec3 unit_or_down(const glm::dvec3& v) {
     const double len = glm::length(v);
@@ -18,25 +21,29 @@ glm::dvec3 unit_or_down(const glm::dvec3& v) {
 }
 
 // Vulkan's framebuffer Y points down: flip, as the camera does, so that triangles keep their
-// winding (counter-clockwise = front) in the 2D maps.
+// winding (counter-clockwise = front) in the 2D maps. The whole y row of the projection flips
+// (y_clip = −(row 1 · p)): an off-centre orthographic box has a y translation in p[3][1] too.
 glm::dmat4 flip_y(glm::dmat4 p) {
-    p[1][1] *= -1.0;
+    for (int column = 0; column < 4; ++column) p[column][1] *= -1.0;
     return p;
 }
 
-// Near and far of a perspective map: far reaches the farthest receiver, near the nearest caster
-// (`distance` of a box: the smallest depth any of its points has in the map), but never below
-// far · kMinNearRatio (a caster closer than that, e.g. with the light inside it, is clipped).
+// Near and far of a perspective map, from the casters alone. Far lies just beyond the farthest
+// caster: a receiver farther away needs no depth in the map, the lookup clamps its depth to 1,
+// where a texel without a caster still reads "lit" (the map is cleared to 1). Near is the nearest
+// caster (`distance` of a box: the smallest depth any of its points has in the map), but never
+// below far · kMinNearRatio.
 template <typename Near, typename Far>
-void fit_depth(const std::vector<Box>& casters, const std::vector<Box>& receivers, Near near_of, Far far_of,
-               double& n, double& f) {
-    f = 1e-3;
-    for (const Box& b : receivers) f = std::max(f, far_of(b));
-    for (const Box& b : casters) f = std::max(f, far_of(b));
+void fit_depth(const std::vector<Box>& casters, Near near_of, Far far_of, double& n, double& f) {
+    f = 0.0;
     n = kInf;
-    for (const Box& b : casters) n = std::min(n, near_of(b));
+    for (const Box& b : casters) {
+        f = std::max(f, far_of(b));
+        n = std::min(n, near_of(b));
+    }
+    if (!(f > 0.0)) f = n = 1.0;  // no caster: an empty map, any planes do
+    f *= kFarMargin;
     n = std::clamp(n * 0.99, f * kMinNearRatio, f * 0.5);
-    f *= 1.01;
 }
 
 // A view matrix's up vector for a camera looking along `direction`: world +Y, unless the
@@ -46,13 +53,21 @@ glm::dvec3 up_for(const glm::dvec3& direction) {
 }
 }  // namespace
 
+glm::dmat4 LightFrustum::world_to_clip(const glm::dmat4& relative) const { return relative * glm::translate(glm::dmat4(1.0), -origin); }
+
+bool uses_cube_map(const lab::LightDesc& light) {
+    return light.type == lab::LightDesc::Type::Point ||
+           (light.type == lab::LightDesc::Type::Spot && light.outer_deg > kWidestSpotMapDeg);
+}
+
 LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>& casters, const std::vector<Box>& receivers) {
     const glm::dvec3 d = unit_or_down(direction);
     Box all = Box::empty();
     for (const Box& b : receivers) all.add(b);
     if (receivers.empty()) all = {glm::dvec3(-1.0), glm::dvec3(1.0)};
-    const glm::dvec3 centre = 0.5 * (all.lo + all.hi);
-    const glm::dmat4 view = glm::lookAtRH(centre - d, centre, up_for(d));  // looks along −z = d
+    LightFrustum f;
+    f.origin = 0.5 * (all.lo + all.hi);
+    const glm::dmat4 view = glm::lookAtRH(f.origin - d, f.origin, up_for(d));  // looks along −z = d
 
     // Light space: x, y across the beam, z towards the light.
     Box c = Box::empty(), r = Box::empty();
@@ -61,8 +76,9 @@ LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>
     if (casters.empty()) c = r;
     // Across the beam: only where a caster can shadow a receiver (both boxes overlap); a receiver
     // outside is lit anyway (outside the map = lit). Along it: from the caster nearest the light
-    // to the farthest receiver.
-    glm::dvec3 lo(std::max(c.lo.x, r.lo.x), std::max(c.lo.y, r.lo.y), std::min(r.lo.z, c.lo.z));
+    // to a little beyond the farthest caster (farther receivers: depth clamped to 1, see fit_depth).
+    const double margin = (kFarMargin - 1.0) * (c.hi.z - c.lo.z);
+    glm::dvec3 lo(std::max(c.lo.x, r.lo.x), std::max(c.lo.y, r.lo.y), c.lo.z - margin);
     glm::dvec3 hi(std::min(c.hi.x, r.hi.x), std::min(c.hi.y, r.hi.y), c.hi.z);
     const double size = std::max({glm::length(all.hi - all.lo), 1e-6});
     for (int i = 0; i < 3; ++i) {
@@ -70,33 +86,39 @@ LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>
         lo[i] -= 1e-4 * size;
         hi[i] += 1e-4 * size;
     }
-    LightFrustum f;
     f.near_plane = -hi.z;  // view space looks down −z
     f.far_plane = -lo.z;
-    f.view_projection = flip_y(glm::orthoRH_ZO(lo.x, hi.x, lo.y, hi.y, f.near_plane, f.far_plane)) * view;
+    f.view_projection = flip_y(glm::orthoRH_ZO(lo.x, hi.x, lo.y, hi.y, f.near_plane, f.far_plane)) * view *
+                        glm::translate(glm::dmat4(1.0), f.origin);
     f.texel = std::max(hi.x - lo.x, hi.y - lo.y);
     return f;
 }
 
 LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, double outer_deg,
                       const std::vector<Box>& casters, const std::vector<Box>& receivers) {
+    (void)receivers;  // the map ends beyond the farthest caster (fit_depth)
     const glm::dvec3 d = unit_or_down(direction);
-    const glm::dmat4 view = glm::lookAtRH(position, position + d, up_for(d));
-    // The cone plus a degree, so that PCF taps at its edge stay inside the map.
-    const double fov = glm::radians(std::clamp(2.0 * outer_deg + 1.0, 1.0, 170.0));
+    LightFrustum f;
+    f.origin = position;
+    const glm::dmat4 view = glm::lookAtRH(glm::dvec3(0.0), d, up_for(d));  // relative to the light
+    // The cone plus 2 % of its width, so that PCF taps at its edge stay inside the map (a margin
+    // in proportion: a narrow, far spot keeps its texels small).
+    const double half_tan = std::max(std::tan(glm::radians(std::clamp(outer_deg, 0.0, kWidestSpotMapDeg))) * 1.02, 1e-3);
+    const double fov = 2.0 * std::atan(half_tan);
     std::vector<Box> in_cone;
     for (const Box& b : casters)
         if (in_spot_cone(b, position, d, outer_deg)) in_cone.push_back(b);
     // A box's depth along the axis: −z in view space.
-    LightFrustum f;
-    fit_depth(in_cone, receivers, [&](const Box& b) { return -lab::transformed(b, view).hi.z; },
-              [&](const Box& b) { return -lab::transformed(b, view).lo.z; }, f.near_plane, f.far_plane);
+    const glm::dmat4 world_view = view * glm::translate(glm::dmat4(1.0), -position);
+    fit_depth(in_cone, [&](const Box& b) { return -lab::transformed(b, world_view).hi.z; },
+              [&](const Box& b) { return -lab::transformed(b, world_view).lo.z; }, f.near_plane, f.far_plane);
     f.view_projection = flip_y(glm::perspectiveRH_ZO(fov, 1.0, f.near_plane, f.far_plane)) * view;
-    f.texel = 2.0 * std::tan(fov / 2.0);
+    f.texel = 2.0 * half_tan;
     return f;
 }
 
 LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters, const std::vector<Box>& receivers) {
+    (void)receivers;  // the map ends beyond the farthest caster (fit_depth)
     // A point's depth in the face it falls in is its largest |coordinate| relative to the light,
     // so a box's nearest depth is its Chebyshev distance from the light, its farthest depth at
     // most its farthest corner.
@@ -109,7 +131,8 @@ LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& caste
         return std::max({far.x, far.y, far.z});
     };
     LightFrustum f;
-    fit_depth(casters, receivers, nearest, farthest, f.near_plane, f.far_plane);
+    f.origin = position;
+    fit_depth(casters, nearest, farthest, f.near_plane, f.far_plane);
     // The cube faces in Vulkan's order, with the up vectors that make each face's image what a
     // cube sampler reads for that direction (the OpenGL convention; both APIs put row 0 at t = 0).
     // These views mirror the picture (a cube map is seen from inside): counter-clockwise
@@ -117,9 +140,35 @@ LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& caste
     const glm::dvec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     const glm::dvec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
     const glm::dmat4 projection = glm::perspectiveRH_ZO(glm::radians(90.0), 1.0, f.near_plane, f.far_plane);
-    for (int i = 0; i < 6; ++i) f.faces[i] = projection * glm::lookAtRH(position, position + axes[i], ups[i]);
+    for (int i = 0; i < 6; ++i) f.faces[i] = projection * glm::lookAtRH(glm::dvec3(0.0), axes[i], ups[i]);
     f.texel = 2.0;
     return f;
+}
+
+bool can_shadow(const Box& caster, const Box& receiver, const glm::dvec3& direction) {
+    // The swept caster {c + t·d, t ≥ 0} meets the receiver exactly when the ray t·d (t ≥ 0) meets
+    // the Minkowski difference receiver − caster = [R.lo − C.hi, R.hi − C.lo]: a slab test.
+    const glm::dvec3 d = unit_or_down(direction), lo = receiver.lo - caster.hi, hi = receiver.hi - caster.lo;
+    double t0 = 0.0, t1 = kInf;
+    for (int i = 0; i < 3; ++i) {
+        if (std::abs(d[i]) < 1e-300) {
+            if (lo[i] > 0.0 || hi[i] < 0.0) return false;  // parallel to the slab and outside it
+            continue;
+        }
+        const double a = lo[i] / d[i], b = hi[i] / d[i];
+        t0 = std::max(t0, std::min(a, b));
+        t1 = std::min(t1, std::max(a, b));
+    }
+    return t0 <= t1;
+}
+
+bool can_shadow_from(const Box& caster, const Box& receiver, const glm::dvec3& position) {
+    // Every shadow ray runs from a receiver point to the light, inside the box around both.
+    Box rays = receiver;
+    rays.add(Box{position, position});
+    for (int i = 0; i < 3; ++i)
+        if (rays.hi[i] < caster.lo[i] || caster.hi[i] < rays.lo[i]) return false;
+    return true;
 }
 
 bool in_spot_cone(const Box& box, const glm::dvec3& position, const glm::dvec3& direction, double outer_deg) {

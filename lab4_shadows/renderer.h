@@ -95,7 +95,8 @@ private:
     // Lab 3: textures. Each map image loaded and uploaded once; per material with maps one
     // descriptor set (set 1), written once; materials without maps bind nothing.
     lab::SamplerCache samplers_;
-    std::map<std::string, lab::Texture> textures_;  // [map]
+    using TextureKey = std::pair<std::string, lab::TexelEncoding>;  // a map, as colour or as data
+    std::map<TextureKey, lab::Texture> textures_;
     lab::Texture white_;                            // stands in for a map a textured material lacks
     lab::Handle<VkDescriptorSetLayout> texture_layout_;
     lab::Handle<VkDescriptorPool> texture_pool_;

@@ -24,7 +24,9 @@ std::vector<int> layout_of(const Lighting& lighting) {
     std::vector<int> layout;
     const std::vector<int> slots = lighting.shadow_slots();
     for (size_t i = 0; i < lighting.lights.size(); ++i)
-        if (slots[i] >= 0) layout.insert(layout.end(), {int(i), int(lighting.lights[i].type), lighting.lights[i].shadow.resolution});
+        if (slots[i] >= 0)
+            layout.insert(layout.end(), {int(i), int(lighting.lights[i].type), uses_cube_map(lighting.lights[i]),
+                                         lighting.lights[i].shadow.resolution});
     layout.push_back(lighting.translucent_casters);
     return layout;
 }
@@ -33,10 +35,7 @@ std::vector<int> layout_of(const Lighting& lighting) {
 ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects, const Lighting& lighting,
                        const std::string& shader_dir)
     : vk_(vk), objects_(std::move(objects)), translucent_(lighting.translucent_casters) {
-    for (const Caster& c : objects_) {
-        receiver_boxes_.push_back(c.box);
-        if (c.casts) caster_boxes_.push_back(c.box);
-    }
+    for (const Caster& c : objects_) receiver_boxes_.push_back(c.box);
     // 32-bit float depth where the device samples it (precision for perspective maps), else 16-bit.
     // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
     const VkFormatFeatureFlags depth_use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
@@ -54,16 +53,22 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     const lab::Handle<VkShaderModule> vertex_shader = lab::load_shader(vk, shader_dir, "shadow.vert");
     lab::PipelineBuilder casters;  // what every shadow pipeline shares
     casters.vertex_attributes(lab::kPosition).push_constants(kBoth, sizeof(ShadowConstants));
+    // Depth clamp: a caster in front of the near plane is drawn at depth 0 instead of clipped
+    // away (light_frustum.cpp keeps near/far ≥ 1e-3 for precision). Without the feature such a
+    // caster is lost.
     opaque_ = lab::PipelineBuilder(casters)
                   .shaders(vertex_shader, VK_NULL_HANDLE)
                   .cull(VK_CULL_MODE_NONE)  // a plane casts from either side
                   .color_attachments(0)
                   .dynamic_depth_bias()
+                  .depth_clamp(vk.enabled_features().depthClamp)
                   .build(vk, depth_pass_);
     if (translucent_) {
         const lab::Handle<VkShaderModule> translucent_shader = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
         for (int cube = 0; cube < 2; ++cube) {
-            // Front faces as the light sees them; a cube face's view mirrors the winding.
+            // Front faces as the light sees them; a cube face's view mirrors the winding. (A caster
+            // whose transform mirrors is inside out, here as in the camera's pass and the
+            // reference: docs/scene-format.md, "Negative scale".)
             const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
             VkPipelineColorBlendAttachmentState g{};  // the nearest face's depth into g
             g.colorWriteMask = VK_COLOR_COMPONENT_G_BIT;
@@ -72,7 +77,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                                                         VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
                                                         VK_COLOR_COMPONENT_R_BIT};
             lab::PipelineBuilder builder = casters;
-            builder.shaders(vertex_shader, translucent_shader).cull(back);
+            builder.shaders(vertex_shader, translucent_shader).cull(back).depth_clamp(vk.enabled_features().depthClamp);
             nearest_[cube] = builder.color_blend(g).depth(true, true).build(vk, translucent_pass_);
             multiply_[cube] = builder.color_blend(r).depth(false, false).build(vk, translucent_pass_);
         }
@@ -81,7 +86,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     const std::vector<int> slots = lighting.shadow_slots();
     for (size_t i = 0; i < lighting.lights.size(); ++i) {
         if (slots[i] < 0) continue;
-        const bool cube = lighting.lights[i].type == lab::LightDesc::Type::Point;
+        const bool cube = uses_cube_map(lighting.lights[i]);
         maps_.push_back(make_map(int(i), cube, clamp_resolution(lighting.lights[i].shadow.resolution, cube), translucent_));
     }
     layout_ = layout_of(lighting);
@@ -190,19 +195,20 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
         // Only the lookup's numbers: the map still holds what they describe.
         (*out)[slot] = map.gpu;
         (*out)[slot].params.x *= light.shadow.normal_offset / float(map.depth.size);
+        (*out)[slot].texel.x /= float(map.depth.size);
     }
 }
 
 // Draws the casters into the current pass: opaque ones with the bound depth-only pipeline, or
 // (translucent) the translucent ones with both translucent pipelines.
-void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting,
+void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting,
                               bool translucent, const lab::LightDesc& light) const {
     const bool spot = light.type == lab::LightDesc::Type::Spot;
     const lab::GpuMesh* bound = nullptr;
     for (const Caster& c : objects_) {
         if (!c.casts || translucent_material(lighting, c.material) != translucent) continue;
         if (spot && !in_spot_cone(c.box, glm::dvec3(light.position), glm::dvec3(light.direction), light.outer_deg)) continue;
-        const ShadowConstants constants{glm::mat4(view_projection * glm::dmat4(c.model)),
+        const ShadowConstants constants{glm::mat4(world_to_clip * glm::dmat4(c.model)),
                                         glm::vec4(1.0f - lighting.materials[c.material].opacity)};
         if (c.mesh != bound) {
             lab::bind_mesh(cmd, *c.mesh);
@@ -213,37 +219,64 @@ void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projec
     }
 }
 
+// The casters a light's map is fitted to: those that can shadow a receiver — another object, or
+// themselves when their mesh is not convex (a convex object shadows only its own unlit side).
+std::vector<Box> ShadowMaps::casters_for(const lab::LightDesc& light) const {
+    const bool directional = light.type == lab::LightDesc::Type::Directional;
+    std::vector<Box> out;
+    for (size_t i = 0; i < objects_.size(); ++i) {
+        if (!objects_[i].casts) continue;
+        for (size_t j = 0; j < objects_.size(); ++j) {
+            if (i == j && objects_[i].convex) continue;
+            const Box &c = objects_[i].box, &r = objects_[j].box;
+            if (directional ? can_shadow(c, r, glm::dvec3(light.direction)) : can_shadow_from(c, r, glm::dvec3(light.position))) {
+                out.push_back(c);
+                break;
+            }
+        }
+    }
+    return out;
+}
+
 void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting) {
     const glm::dvec3 position(light.position), direction(light.direction);
+    const std::vector<Box> casters = casters_for(light);
     LightFrustum f;
-    switch (light.type) {
-        case lab::LightDesc::Type::Directional: f = fit_directional(direction, caster_boxes_, receiver_boxes_); break;
-        case lab::LightDesc::Type::Spot: f = fit_spot(position, direction, light.outer_deg, caster_boxes_, receiver_boxes_); break;
-        case lab::LightDesc::Type::Point: f = fit_point(position, caster_boxes_, receiver_boxes_); break;
+    if (light.type == lab::LightDesc::Type::Directional) {
+        f = fit_directional(direction, casters, receiver_boxes_);
+    } else if (!map.cube) {
+        f = fit_spot(position, direction, light.outer_deg, casters, receiver_boxes_);
+    } else {  // a point light, or a spot too wide for one map: its casters in the cone
+        std::vector<Box> in_cone;
+        for (const Box& b : casters)
+            if (light.type == lab::LightDesc::Type::Point || in_spot_cone(b, position, direction, light.outer_deg))
+                in_cone.push_back(b);
+        f = fit_point(position, in_cone, receiver_boxes_);
     }
     const bool perspective = light.type != lab::LightDesc::Type::Directional;
     // Perspective depth = a − b / distance (glm::perspectiveRH_ZO), for the cube lookup and the view.
     const double a = f.far_plane / (f.far_plane - f.near_plane), b = f.far_plane * f.near_plane / (f.far_plane - f.near_plane);
     map.gpu.view_projection = glm::mat4(f.view_projection);
-    map.gpu.position = glm::vec4(light.position, 1.0f);
+    map.gpu.origin = glm::vec4(glm::vec3(f.origin), 1.0f);
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
     // normal_offset / resolution.
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
+    map.gpu.texel = glm::vec4(float(f.texel), perspective ? 0.0f : float(f.far_plane - f.near_plane), 0.0f, 0.0f);
 
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
-        const glm::dmat4& view_projection = map.cube ? f.faces[face] : f.view_projection;
+        const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);
         map.depth.begin(cmd, face);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
         // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
         // (grows with how steeply the triangle's depth changes across a texel).
         vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
-        draw_casters(cmd, view_projection, lighting, false, light);
+        draw_casters(cmd, world_to_clip, lighting, false, light);
         vkCmdEndRenderPass(cmd);
         if (!translucent_) continue;
         map.transmittance.begin(cmd, face);
         for (const auto* pipeline : {&nearest_[map.cube], &multiply_[map.cube]}) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
-            draw_casters(cmd, view_projection, lighting, true, light);
+            draw_casters(cmd, world_to_clip, lighting, true, light);
         }
         vkCmdEndRenderPass(cmd);
     }

@@ -19,9 +19,10 @@
 
 // Per shadow slot, what the lookup needs (std140, see shadows.glsl).
 struct GpuShadow {
-    glm::mat4 view_projection;  // world → the map's clip space (2D maps)
-    glm::vec4 position;         // xyz: the light
+    glm::mat4 view_projection;  // (world − origin) → the map's clip space (2D maps)
+    glm::vec4 origin;           // xyz: the light (spot, cube), the fitted box's centre (directional)
     glm::vec4 params;           // x: normal offset (world; perspective: per unit distance), y, z: depth = y − z / distance
+    glm::vec4 texel;            // x: one texel's world size (perspective: per unit distance), y: orthographic depth range
 };
 using GpuShadows = std::array<GpuShadow, kMaxShadowLights>;  // [slot]
 
@@ -32,6 +33,7 @@ struct Caster {
     Box box;            // world-space bounds
     uint32_t material;  // index into Lighting::materials (its opacity)
     bool casts;         // ObjectDesc::cast_shadows
+    bool convex;        // a convex mesh (primitives but the torus) shadows only its own unlit side
 };
 
 class ShadowMaps {
@@ -68,13 +70,14 @@ private:
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
-    void draw_casters(VkCommandBuffer cmd, const glm::dmat4& view_projection, const Lighting& lighting, bool translucent,
+    void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting, bool translucent,
                       const lab::LightDesc& light) const;
     uint32_t clamp_resolution(int requested, bool cube) const;
+    std::vector<Box> casters_for(const lab::LightDesc& light) const;
 
     const lab::VulkanContext& vk_;
     std::vector<Caster> objects_;
-    std::vector<Box> caster_boxes_, receiver_boxes_;
+    std::vector<Box> receiver_boxes_;  // every object's
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     VkFormat transmittance_format_ = VK_FORMAT_R32G32_SFLOAT;
     bool translucent_ = false;  // some caster is translucent

@@ -314,6 +314,21 @@ TEST(Lab3Render, DistortedSamplingOwnNumbers) {
                        "weights": [0.5, 0.4]}, )" + kAnisoOff + "}"),
                    "distorted_numbers");
 }
+// Whole repeats in uv_offset: the lab takes them out of the offset (a float keeps no fraction of
+// uv + 10⁶) and puts back what they change in the distortion (phases, scaled lookups). Scales
+// 1.5 and 0.75 make a whole offset a fractional one at the second and third lookup; the mirror
+// period is 2, so an odd offset is not a whole period there. Clamp keeps its offset as it is.
+void expect_distorted_with_offset(const std::string& name, const std::string& wrap, const std::string& offset) {
+    expect_matches(plane_scene(name, R"({"albedo_map": ")" + tex("bricks.png") + R"(", "sampling": "distorted",
+        "uv_scale": [1.3, 0.9], "uv_offset": )" + offset + R"(,
+        "distortion": {"amplitude": [0.05, -0.04], "frequency": [6, 12], "position_frequency": [-1, 3], "scales": [1.5, 0.75],
+                       "weights": [0.5, 0.4]}, "sampler": {"anisotropy": 1, "wrap": ")" + wrap + R"("}})"),
+                   name);
+}
+TEST(Lab3Render, DistortedSamplingWholeOffsetRepeat) { expect_distorted_with_offset("distorted_offset_repeat", "repeat", "[3, -2]"); }
+TEST(Lab3Render, DistortedSamplingWholeOffsetMirror) { expect_distorted_with_offset("distorted_offset_mirror", "mirror", "[3.25, -5]"); }
+TEST(Lab3Render, DistortedSamplingWholeOffsetClamp) { expect_distorted_with_offset("distorted_offset_clamp", "clamp", "[-1, 0.25]"); }
+TEST(Lab3Render, DistortedSamplingHugeOffset) { expect_distorted_with_offset("distorted_offset_huge", "repeat", "[123457, -98765]"); }
 
 // --- minified: a tiled floor at a grazing angle (trilinear, no anisotropy) -----------------------
 

@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iomanip>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -249,14 +250,123 @@ TEST(MipChain, LevelCountAndCpuBoxFilterInLinearColour) {
     lab::Image8 bw = solid(2, 2, 0);
     for (int c = 0; c < 3; ++c) bw.rgba[size_t(c)] = bw.rgba[12 + size_t(c)] = 255;
     bw.rgba[3] = bw.rgba[7] = bw.rgba[11] = bw.rgba[15] = 255;
-    const lab::Image8 next = lab::downsample_srgb(bw);
+    const lab::Image8 next = lab::downsample(bw, lab::TexelEncoding::Srgb);
     ASSERT_EQ(next.width, 1);
     EXPECT_EQ(pixel(next, 0, 0)[0], 188);
     EXPECT_EQ(pixel(next, 0, 0)[3], 255);
-    const lab::Image8 odd = lab::downsample_srgb(solid(5, 3, 77));
+    const lab::Image8 odd = lab::downsample(solid(5, 3, 77), lab::TexelEncoding::Srgb);
     EXPECT_EQ(odd.width, 2);
     EXPECT_EQ(odd.height, 1);
     EXPECT_EQ(pixel(odd, 1, 0)[1], 77);
+}
+
+// Odd sizes, by hand, on data (no sRGB): 3 → 1 is the mean of all three texels (not the middle
+// one, not the first two); 5 → 2 covers 2.5 texels each: (10 + 20 + ½·30) / 2.5 = 18 and
+// (½·30 + 40 + 50) / 2.5 = 42. Rows the same way: 1×3 → 1×1.
+TEST(MipChain, OddSidesAreBoxAveragesOfEveryTexel) {
+    const auto row = [](std::vector<uint8_t> values, bool vertical) {
+        lab::Image8 im;
+        im.width = vertical ? 1 : int(values.size());
+        im.height = vertical ? int(values.size()) : 1;
+        for (uint8_t v : values) im.rgba.insert(im.rgba.end(), {v, v, v, 255});
+        return im;
+    };
+    const lab::Image8 three = lab::downsample(row({0, 90, 255}, false), lab::TexelEncoding::Linear);
+    EXPECT_EQ(pixel(three, 0, 0)[0], 115);  // (0 + 90 + 255) / 3 = 115
+    const lab::Image8 five = lab::downsample(row({10, 20, 30, 40, 50}, false), lab::TexelEncoding::Linear);
+    ASSERT_EQ(five.width, 2);
+    EXPECT_EQ(pixel(five, 0, 0)[0], 18);
+    EXPECT_EQ(pixel(five, 1, 0)[0], 42);
+    EXPECT_EQ(pixel(lab::downsample(row({0, 90, 255}, true), lab::TexelEncoding::Linear), 0, 0)[2], 115);
+    // sRGB: averaged in linear colour: 0, 255, 0 → linear 1/3 → sRGB 255·(1.055·(1/3)^(1/2.4) − 0.055) = 156.2.
+    EXPECT_EQ(pixel(lab::downsample(row({0, 255, 0}, false), lab::TexelEncoding::Srgb), 0, 0)[1], 156);
+    EXPECT_TRUE(lab::blit_halves_exactly(64, 32));
+    EXPECT_TRUE(lab::blit_halves_exactly(1, 8));
+    EXPECT_FALSE(lab::blit_halves_exactly(25, 16));
+    EXPECT_FALSE(lab::blit_halves_exactly(2, 3));
+}
+
+// Every level of an uploaded texture, read back from the device.
+std::vector<lab::Image8> read_levels(const lab::VulkanContext& vk, const lab::Texture& t) {
+    std::vector<lab::Image8> levels;
+    VkDeviceSize bytes = 0;
+    for (uint32_t l = 0; l < t.levels; ++l) bytes += VkDeviceSize(std::max(t.width >> l, 1u)) * std::max(t.height >> l, 1u) * 4;
+    lab::Buffer buffer = lab::Buffer::host_visible(vk, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    std::vector<VkBufferImageCopy> copies;
+    VkDeviceSize offset = 0;
+    for (uint32_t l = 0; l < t.levels; ++l) {
+        VkBufferImageCopy copy{};
+        copy.bufferOffset = offset;
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1};
+        copy.imageExtent = {std::max(t.width >> l, 1u), std::max(t.height >> l, 1u), 1};
+        copies.push_back(copy);
+        offset += VkDeviceSize(copy.imageExtent.width) * copy.imageExtent.height * 4;
+    }
+    vk.run_once([&](VkCommandBuffer cmd) {
+        lab::image_barrier(cmd, t.image.image, 0, t.levels, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT);
+        vkCmdCopyImageToBuffer(cmd, t.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), uint32_t(copies.size()), copies.data());
+        lab::image_barrier(cmd, t.image.image, 0, t.levels, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                           VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    });
+    for (const VkBufferImageCopy& c : copies) {
+        lab::Image8 im;
+        im.width = int(c.imageExtent.width);
+        im.height = int(c.imageExtent.height);
+        const uint8_t* p = static_cast<const uint8_t*>(buffer.mapped()) + c.bufferOffset;
+        im.rgba.assign(p, p + size_t(im.width) * size_t(im.height) * 4);
+        levels.push_back(std::move(im));
+    }
+    return levels;
+}
+
+// The device's mip chains, GPU blits and CPU fallback, colour and data, odd and even sizes
+// (wood.png's 100×60 among them): every level within 1/255 of the reference's double-precision
+// box average (tests/reference/cpu_texture.cpp) of the level above as the device holds it.
+TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
+    int messages = 0;
+    {
+        lab::ContextOptions options;
+        options.validate = true;
+        options.message_count = &messages;
+        lab::VulkanContext vk(options);
+        uint32_t state = 12345u;
+        const auto next = [&] { return uint8_t((state = state * 1664525u + 1013904223u) >> 24); };
+        const int sizes[][2] = {{64, 32}, {100, 60}, {7, 5}, {1, 9}, {33, 2}, {3, 3}};
+        for (const auto& size : sizes)
+            for (const lab::TexelEncoding encoding : {lab::TexelEncoding::Srgb, lab::TexelEncoding::Linear})
+                for (const lab::MipSource source : {lab::MipSource::Auto, lab::MipSource::Cpu}) {
+                    lab::Image8 image;
+                    image.width = size[0];
+                    image.height = size[1];
+                    for (int i = 0; i < size[0] * size[1] * 4; ++i) image.rgba.push_back(next());
+                    const lab::Texture t = lab::upload_texture(vk, image, true, source, encoding);
+                    const std::vector<lab::Image8> levels = read_levels(vk, t);
+                    const bool srgb = encoding == lab::TexelEncoding::Srgb;
+                    EXPECT_EQ(levels[0].rgba, image.rgba);
+                    for (size_t l = 0; l + 1 < levels.size(); ++l) {
+                        const ref::RefTexture box = ref::make_texture(levels[l].width, levels[l].height, levels[l].rgba, true, srgb);
+                        const ref::TextureLevel& want = box.levels[1];
+                        ASSERT_EQ(want.width, levels[l + 1].width);
+                        ASSERT_EQ(want.height, levels[l + 1].height);
+                        double worst = 0.0;
+                        for (int y = 0; y < want.height; ++y)
+                            for (int x = 0; x < want.width; ++x)
+                                for (int c = 0; c < 4; ++c) {
+                                    const double v = want.at(x, y)[c];
+                                    const double expected = 255.0 * (srgb && c < 3 ? ref::srgb_encode(v) : v);
+                                    const double got = levels[l + 1].rgba[(size_t(y) * size_t(want.width) + size_t(x)) * 4 + size_t(c)];
+                                    worst = std::max(worst, std::abs(got - expected));
+                                }
+                        // 1/255 (+ the double rounding of 255·v: an exact one-level step reads 1.0000000000001)
+                        EXPECT_LE(worst, 1.0 + 1e-9) << worst << " " << size[0] << "x" << size[1] << (srgb ? " sRGB" : " data")
+                                              << (source == lab::MipSource::Cpu ? " CPU" : " auto") << ": level " << l + 1;
+                    }
+                }
+    }
+    EXPECT_EQ(messages, 0) << "validation messages";
 }
 
 // --- the reference's sampling, by hand ---------------------------------------------
@@ -319,7 +429,11 @@ TEST(ReferenceSampling, MipChainIsALinearBox) {
     const ref::RefTexture odd = ref::make_texture(3, 1, {0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255}, true);
     ASSERT_EQ(odd.levels.size(), 2u);  // 3×1 → 1×1
     EXPECT_EQ(odd.levels[1].width, 1);
-    EXPECT_DOUBLE_EQ(odd.levels[1].at(0, 0).r, 0.5);  // texels 0 and 1 (the 2×2 box of the top-left)
+    EXPECT_DOUBLE_EQ(odd.levels[1].at(0, 0).r, 1.0 / 3.0);  // all three texels: (0 + 1 + 0) / 3
+    // 5 → 2: each child covers 2.5 parent texels: (0 + 1 + ½·0) / 2.5 = 0.4; data, not sRGB.
+    const ref::RefTexture five = ref::make_texture(5, 1, {0, 0, 0, 255, 255, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255}, true, false);
+    EXPECT_DOUBLE_EQ(five.levels[1].at(0, 0).r, 0.4);
+    EXPECT_DOUBLE_EQ(five.levels[1].at(1, 0).r, 0.0);
 }
 
 TEST(ReferenceSampling, LodAndTrilinear) {

@@ -59,7 +59,8 @@ struct Material {
     vec4 f0;        // rgb: Cook-Torrance F0, a: roughness
     vec4 params;    // x, y: Ward roughness along tangent / bitangent, z: Minnaert k
     vec4 uv_transform;   // lab 3: xy uv_scale, zw uv_offset
-    vec4 distortion[3];  // amplitude, frequency | position_frequency, scales | weights, emissive_strength
+    vec4 distortion[5];  // amplitude, frequency | position_frequency, scales | weights, emissive_strength |
+                         // phases (xy) | lookup offsets (xy, zw): what uv_offset's whole repeats change
 };
 // A uniform buffer, not a storage buffer: every pixel reads its material, and on a CPU
 // rasterizer (lavapipe) uniform reads are much cheaper than storage-buffer reads.

@@ -18,11 +18,14 @@ SHADOW_CONSTANTS(0, 13) SHADOW_CONSTANTS(1, 17) SHADOW_CONSTANTS(2, 21) SHADOW_C
 const bool SHADOWS = SHADOW_KIND_0 != 0 || SHADOW_KIND_1 != 0 || SHADOW_KIND_2 != 0 || SHADOW_KIND_3 != 0;
 
 struct ShadowSlot {
-    mat4 view_projection;  // world → the map's clip space (2D maps)
-    vec4 position;         // xyz: the light (cube maps: the cube's centre)
+    mat4 view_projection;  // (world − origin) → the map's clip space (2D maps)
+    vec4 origin;           // xyz: the light (spot, cube maps), the fitted box's centre (directional);
+                           // positions are taken relative to it, where a float keeps their digits
     vec4 params;           // x: normal offset in world units (perspective maps: per unit of distance),
-                           // y, z: a cube map's depth = y − z / distance along the face's axis;
+                           // y, z: a perspective map's depth = y − z / distance along its axis;
                            // z > 0 also marks a perspective 2D map (spot)
+    vec4 texel;            // x: one texel's world size (perspective: per unit of distance),
+                           // y: an orthographic map's depth range (far − near)
 };
 layout(std140, set = 0, binding = 3) uniform Shadows { ShadowSlot shadow_slots[4]; };
 // The same depth maps twice: read as numbers (nearest) and through a comparison sampler
@@ -36,13 +39,21 @@ layout(set = 0, binding = 7) uniform samplerCubeShadow cube_compare[4];
 layout(set = 0, binding = 8) uniform sampler2D translucency[4];
 layout(set = 0, binding = 9) uniform samplerCube cube_translucency[4];
 
-// A receiver this close behind the nearest translucent caster's depth is that caster itself.
-const float TRANSLUCENT_EPSILON = 1e-4;
+// The distance along the map's axis that a depth value stands for: perspective depth is
+// y − z / distance, orthographic depth grows linearly over the range (from the near plane).
+float map_distance(ShadowSlot s, float depth) {
+    return s.params.z > 0.0 ? s.params.z / max(s.params.y - depth, 1e-30) : depth * s.texel.y;
+}
+
+// A receiver less than this many texels (in world units) behind the nearest translucent caster is
+// that caster itself. Compared as distances, not depths: perspective depth crowds towards 1, so a
+// fixed depth difference would be metres at a far light and nothing near it.
+const float TRANSLUCENT_TEXELS = 2.0;
 
 // One tap's light: 1 or 0 from the depth compare, times the translucent casters' transmittance
-// when the point lies behind the nearest of them.
-float tap(float lit, bool translucent, vec2 transmittance, float ref) {
-    if (translucent && ref > transmittance.g + TRANSLUCENT_EPSILON) lit *= transmittance.r;
+// when the point lies behind the nearest of them by more than `tolerance` (world units).
+float tap(float lit, bool translucent, vec2 transmittance, float ref, ShadowSlot s, float tolerance) {
+    if (translucent && map_distance(s, ref) > map_distance(s, transmittance.g) + tolerance) lit *= transmittance.r;
     return lit;
 }
 
@@ -52,14 +63,19 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // Normal offset: look the map up a little off the surface (in texels), so a surface does not
     // shadow itself where the map's texel stands at an angle to it (acne).
     const bool perspective = s.params.z > 0.0;
-    const vec3 at = P + N * s.params.x * (perspective ? length(P - s.position.xyz) : 1.0);
+    const float distance = perspective ? length(P - s.origin.xyz) : 1.0;
+    const vec3 at = P - s.origin.xyz + N * s.params.x * distance;  // relative to the origin
     const vec4 clip = s.view_projection * vec4(at, 1.0);
     if (!(clip.w > 0.0)) return 1.0;  // behind a spot light: outside its cone anyway
     const vec3 ndc = clip.xyz / clip.w;
     const vec2 uv = ndc.xy * 0.5 + 0.5;
-    const float ref = ndc.z;  // P's depth as the light sees it
     // Outside the map's coverage nothing was fitted to cast onto it: lit.
-    if (!(ref >= 0.0 && ref <= 1.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))) return 1.0;
+    if (!(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))) return 1.0;
+    // P's depth as the light sees it. The map ends just beyond the farthest caster: a receiver
+    // farther away compares as 1, lit where the texel holds no caster (cleared to 1), in shadow
+    // where it does. In front of the near plane (0): only casters clamped there can be nearer.
+    const float ref = clamp(ndc.z, 0.0, 1.0);
+    const float tolerance = TRANSLUCENT_TEXELS * s.texel.x * distance;
     // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
     // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
     // around it and weights the results like a linear filter (what a comparison sampler does with
@@ -68,7 +84,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF costs 4 gathers, not 9 lookups.
     // A texel's weight per axis: nearest 1 (the padding texel N: 0); bilinear 1 − f, 1, …, 1, f.
     if (pcf == 1 && filter_mode == 0)  // a single tap, a single texel: one plain lookup
-        return tap(ref <= texture(depth_map, uv).r ? 1.0 : 0.0, translucent, translucent ? texture(translucent_map, uv).rg : vec2(1.0), ref);
+        return tap(ref <= texture(depth_map, uv).r ? 1.0 : 0.0, translucent, translucent ? texture(translucent_map, uv).rg : vec2(1.0), ref,
+                   s, tolerance);
     const vec2 size = vec2(textureSize(depth_map, 0));
     const vec2 texel = filter_mode == 1 ? uv * size - 0.5 : uv * size;
     const vec2 base = floor(texel) - float(pcf / 2);  // the first texel of the footprint
@@ -85,7 +102,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     }
     // Translucent casters: their transmittance where P projects (once, not per tap; not in full shadow).
     const float opaque = sum / float(pcf * pcf);
-    return tap(opaque, translucent && opaque > 0.0, translucent && opaque > 0.0 ? texture(translucent_map, uv).rg : vec2(1.0), ref);
+    return tap(opaque, translucent && opaque > 0.0, translucent && opaque > 0.0 ? texture(translucent_map, uv).rg : vec2(1.0), ref,
+               s, tolerance);
 }
 
 // The cube map's depth of P for the face that direction d falls in: that face's axis is d's
@@ -101,7 +119,7 @@ float cube_depth_of(vec3 v, vec3 d, ShadowSlot s) {
 // is seamless in Vulkan), compared with P's depth *in that face*, so edges show no seam.
 float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerCube translucent_map, int pcf,
                   int filter_mode, bool translucent, ShadowSlot s, vec3 P, vec3 N) {
-    vec3 v = P - s.position.xyz;
+    vec3 v = P - s.origin.xyz;
     const vec3 a0 = abs(v);
     v += N * s.params.x * max(a0.x, max(a0.y, a0.z));  // normal offset, texels grow with distance
     const vec3 a = abs(v);
@@ -115,13 +133,10 @@ float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerC
     for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
         for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
             const vec3 d = v + (float(x) * u + float(y) * w) * step;
-            const float ref = cube_depth_of(v, d, s);
-            if (ref > 1.0) {  // beyond the far plane, where the fit put no receiver: lit
-                sum += 1.0;
-                continue;
-            }
+            // Beyond the far plane (past the farthest caster): compared as 1, as in shadow_2d.
+            const float ref = clamp(cube_depth_of(v, d, s), 0.0, 1.0);
             const float lit = filter_mode == 1 ? texture(compare_map, vec4(d, ref)) : (ref <= texture(depth_map, d).r ? 1.0 : 0.0);
-            sum += tap(lit, translucent, translucent ? texture(translucent_map, d).rg : vec2(1.0), ref);
+            sum += tap(lit, translucent, translucent ? texture(translucent_map, d).rg : vec2(1.0), ref, s, TRANSLUCENT_TEXELS * step);
         }
     }
     return sum / float(pcf * pcf);

@@ -70,18 +70,25 @@ std::vector<unsigned char> procedural(const std::string& name, int* w, int* h) {
 
 double decode_srgb8(unsigned char v) { return srgb_decode(v / 255.0); }
 
-// The next mip level: 2×2 box in linear colour, odd edges clamped.
+// How much of parent texel [p, p + 1) lies in the child's span [a, b) (one axis, parent units).
+double overlap(int p, double a, double b) { return std::max(0.0, std::min(b, p + 1.0) - std::max(a, double(p))); }
+
+// The next mip level: the box filter. The child texel (x, y) covers the parent rectangle
+// [x·W/w, (x+1)·W/w) × [y·H/h, (y+1)·H/h) (W, w: parent and child widths); it is the mean of the
+// parent over that rectangle, each parent texel weighted by its overlap (area / total area).
 TextureLevel downsample(const TextureLevel& in) {
     TextureLevel out;
     out.width = std::max(in.width / 2, 1);
     out.height = std::max(in.height / 2, 1);
     out.texels.resize(size_t(out.width) * size_t(out.height));
+    const double sx = double(in.width) / out.width, sy = double(in.height) / out.height;
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {
+            const double ax = x * sx, bx = (x + 1) * sx, ay = y * sy, by = (y + 1) * sy;
             glm::dvec4 sum(0.0);
-            for (int dy = 0; dy < 2; ++dy)
-                for (int dx = 0; dx < 2; ++dx) sum += in.at(std::min(2 * x + dx, in.width - 1), std::min(2 * y + dy, in.height - 1));
-            out.texels[size_t(y) * size_t(out.width) + size_t(x)] = sum / 4.0;
+            for (int py = int(ay); py < in.height && py < by; ++py)
+                for (int px = int(ax); px < in.width && px < bx; ++px) sum += overlap(px, ax, bx) * overlap(py, ay, by) * in.at(px, py);
+            out.texels[size_t(y) * size_t(out.width) + size_t(x)] = sum / (sx * sy);
         }
     return out;
 }
@@ -90,24 +97,24 @@ double fract(double x) { return x - std::floor(x); }
 
 }  // namespace
 
-RefTexture make_texture(int width, int height, const std::vector<unsigned char>& srgb_rgba, bool mipmaps) {
+RefTexture make_texture(int width, int height, const std::vector<unsigned char>& srgb_rgba, bool mipmaps, bool srgb) {
     RefTexture t;
     TextureLevel level;
     level.width = width;
     level.height = height;
+    const auto decode = [srgb](unsigned char v) { return srgb ? decode_srgb8(v) : v / 255.0; };
     for (size_t i = 0; i + 3 < srgb_rgba.size(); i += 4)
-        level.texels.emplace_back(decode_srgb8(srgb_rgba[i]), decode_srgb8(srgb_rgba[i + 1]),
-                                  decode_srgb8(srgb_rgba[i + 2]), srgb_rgba[i + 3] / 255.0);
+        level.texels.emplace_back(decode(srgb_rgba[i]), decode(srgb_rgba[i + 1]), decode(srgb_rgba[i + 2]), srgb_rgba[i + 3] / 255.0);
     t.levels.push_back(std::move(level));
     while (mipmaps && (t.levels.back().width > 1 || t.levels.back().height > 1))
         t.levels.push_back(downsample(t.levels.back()));
     return t;
 }
 
-RefTexture load_texture(const std::string& map, bool mipmaps, int max_dimension) {
+RefTexture load_texture(const std::string& map, bool mipmaps, int max_dimension, bool srgb) {
     int w = 0, h = 0;
     const std::string prefix = "procedural:";
-    if (map.rfind(prefix, 0) == 0) return make_texture(w, h, procedural(map.substr(prefix.size()), &w, &h), mipmaps);
+    if (map.rfind(prefix, 0) == 0) return make_texture(w, h, procedural(map.substr(prefix.size()), &w, &h), mipmaps, srgb);
     std::error_code ec;
     std::ifstream in(map, std::ios::binary);
     std::vector<unsigned char> bytes;
@@ -117,13 +124,13 @@ RefTexture load_texture(const std::string& map, bool mipmaps, int max_dimension)
               h > 0 && w <= max_dimension && h <= max_dimension;
     unsigned char* pixels = ok ? stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4) : nullptr;
     if (!pixels) {
-        RefTexture t = make_texture(w, h, procedural("", &w, &h), mipmaps);
+        RefTexture t = make_texture(w, h, procedural("", &w, &h), mipmaps, srgb);
         t.fallback = true;
         return t;
     }
     std::vector<unsigned char> rgba(pixels, pixels + size_t(w) * size_t(h) * 4);
     stbi_image_free(pixels);
-    return make_texture(w, h, rgba, mipmaps);
+    return make_texture(w, h, rgba, mipmaps, srgb);
 }
 
 int wrap_texel(int i, int size, Wrap wrap) {
@@ -203,11 +210,11 @@ struct TexturedScene {
     Camera camera;
     int width = 0, height = 0;
     bool level0 = false;
-    std::map<std::pair<std::string, bool>, RefTexture> textures;  // [map, mipmaps]
+    std::map<std::tuple<std::string, bool, bool>, RefTexture> textures;  // [map, mipmaps, sRGB colour]
 
-    const RefTexture* texture(const std::string& map, const lab::SamplerDesc& s) const {
+    const RefTexture* texture(const std::string& map, const lab::SamplerDesc& s, bool srgb = true) const {
         if (map.empty()) return nullptr;
-        return &textures.at({map, s.mipmaps != Mipmaps::None});
+        return &textures.at({map, s.mipmaps != Mipmaps::None, srgb});
     }
 };
 
@@ -283,8 +290,9 @@ std::shared_ptr<TexturedScene> textured_scene(const lab::Scene& scene, int width
     for (const auto& [name, m] : scene.materials)
         for (const std::string* map : {&m.albedo_map, &m.specular_map, &m.emissive_map})
             if (!map->empty()) {
-                const bool mips = m.sampler.mipmaps != Mipmaps::None;
-                if (!data->textures.count({*map, mips})) data->textures[{*map, mips}] = load_texture(*map, mips);
+                // A specular map is data, a factor in [0, 1]: byte / 255, no sRGB decoding.
+                const bool mips = m.sampler.mipmaps != Mipmaps::None, srgb = map != &m.specular_map;
+                if (!data->textures.count({*map, mips, srgb})) data->textures[{*map, mips, srgb}] = load_texture(*map, mips, 16384, srgb);
             }
     return data;
 }
@@ -338,8 +346,8 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
         dy *= scale;
         lab::SamplerDesc sampler = m.sampler;
         if (data->level0) sampler.filter = Filter::Linear;  // derivatives 0: level 0, bilinear
-        const auto lookup = [&](const std::string& map, glm::dvec2 at, glm::dvec2 ddx, glm::dvec2 ddy) {
-            return glm::dvec3(sample(*data->texture(map, m.sampler), sampler, at, ddx, ddy, variant));
+        const auto lookup = [&](const std::string& map, glm::dvec2 at, glm::dvec2 ddx, glm::dvec2 ddy, bool srgb = true) {
+            return glm::dvec3(sample(*data->texture(map, m.sampler, srgb), sampler, at, ddx, ddy, variant));
         };
         lab::MaterialDesc textured = m;
         if (!m.albedo_map.empty()) {
@@ -365,7 +373,7 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
             textured.albedo = glm::vec3(glm::dvec3(m.albedo) * A);
         }
         if (!m.specular_map.empty())
-            textured.specular = glm::vec3(glm::dvec3(m.specular) * lookup(m.specular_map, uv, dx, dy));
+            textured.specular = glm::vec3(glm::dvec3(m.specular) * lookup(m.specular_map, uv, dx, dy, false));
         if (!m.emissive_map.empty())
             textured.emissive = glm::vec3(glm::dvec3(m.emissive) +
                                           double(m.emissive_strength) * lookup(m.emissive_map, uv, dx, dy));

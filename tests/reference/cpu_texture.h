@@ -3,8 +3,10 @@
 //
 //   * its own decoding of the image files (stb_image compiled here) and of the procedural
 //     sources (from their formulas in docs/scene-format.md);
-//   * its own mip chain: each level the 2×2 box average of the one above in *linear* colour
-//     (an odd last row / column is averaged with itself), kept in double, never re-quantized;
+//   * its own mip chain: each level the box average of the one above in *linear* colour (a child
+//     texel is the mean over the parent area it covers: 2×2 for even sides, all three texels for
+//     3 → 1, overlap-weighted for 5 → 2), kept in double, never re-quantized;
+//   * albedo and emissive maps are sRGB colours; a specular map is data (byte / 255, no decoding);
 //   * texel centres at (i + ½)/size; wrap modes repeat, mirrored repeat, clamp to edge;
 //   * nearest: texel floor(u·w); linear: the 4 texels around u·w − ½, bilinear weights;
 //   * LOD λ = log2(ρmax) with ρ from *analytic* UV derivatives at the pixel (ray differentials,
@@ -38,11 +40,12 @@ struct RefTexture {
     bool fallback = false;             // the map could not be read: the magenta/black checkerboard
 };
 
-// 8-bit sRGB RGBA pixels → a texture (linear), with the mip chain down to 1×1 if `mipmaps`.
-RefTexture make_texture(int width, int height, const std::vector<unsigned char>& srgb_rgba, bool mipmaps);
+// 8-bit RGBA pixels → a texture (linear), with the mip chain down to 1×1 if `mipmaps`. `srgb`:
+// the RGB bytes are sRGB-encoded colour (else linear data, byte / 255); alpha is always linear.
+RefTexture make_texture(int width, int height, const std::vector<unsigned char>& srgb_rgba, bool mipmaps, bool srgb = true);
 // A map as the scene names it ("procedural:NAME" or a file). Files that do not decode, or that
 // exceed `max_dimension`, give the checkerboard with fallback = true.
-RefTexture load_texture(const std::string& map, bool mipmaps, int max_dimension = 16384);
+RefTexture load_texture(const std::string& map, bool mipmaps, int max_dimension = 16384, bool srgb = true);
 
 // The wrapped integer texel coordinate (spec: "Wrapping Operation").
 int wrap_texel(int i, int size, lab::SamplerDesc::Wrap wrap);

@@ -1,0 +1,283 @@
+// lab4_random_scenes.cpp — lab 4's shadows on random scenes from fixed seeds, against the ray-traced
+// reference (tests/reference/cpu_shadow.*). The hand-made scenes of test_lab4_render sit around the
+// origin at modest sizes; these do not: every light type, lights far off-centre and far away (up
+// to 10⁵), casters 0.01 … 1000 units from the light, receivers up to 10⁴ across, spot cones up to
+// the widest the format allows (90°), opaque and translucent casters down to 0.001 thick,
+// mirrored and non-uniform transforms, groups of casters far from the origin.
+//
+//   lab4_random_scenes --first N --count M [--size WxH] [--keep]
+//
+// For each seed: the scene is written as JSON, rendered by the real lab (headless, validation on)
+// and judged with the shadow error metric (docs/testing.md) against the reference, with a 2-pixel
+// band around the reference's shadow and object edges: at most 0.1 % of the compared pixels may be
+// on the wrong side. A failing seed prints its scene and the command that reproduces it. The last
+// line names the worst scene. CTest runs a few hundred seeds in shards (label lab4);
+// `bash bench/lab4_random_scenes.sh 3000` runs the long version.
+//
+// Every scene is one a shadow map can resolve, by construction: a map texel at the casters is at
+// most about a camera pixel (directional maps are fitted to the casters; point lights and wide spots
+// stay within ~20 caster sizes; far spots have cones that just cover the group, ≥ 0.5°), and positions
+// stay within 10⁴ caster sizes of the origin (a float vertex keeps ~4 digits of a caster's shape
+// there). What remains is the lab's to get right.
+#include "reference/cpu_reference.h"
+#include "reference/cpu_shadow.h"
+#include "reference/image_compare.h"
+#include "image_io.h"
+#include "lab_runner.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMaxWrongShare = 0.001;  // 0.1 % of the compared pixels
+constexpr int kBand = 2;                  // pixels around the reference's edges left out
+
+// Uniform numbers from the seed alone: mt19937_64 is specified bit for bit, and so is this
+// conversion (the standard's distributions are not, across library versions).
+class Rng {
+public:
+    explicit Rng(uint64_t seed) : g_(seed * 0x9E3779B97F4A7C15ull + 12345u) {}
+    double uniform(double lo, double hi) { return lo + (hi - lo) * double(g_() >> 11) * 0x1.0p-53; }
+    double log_uniform(double lo, double hi) { return std::pow(10.0, uniform(std::log10(lo), std::log10(hi))); }
+    bool chance(double p) { return uniform(0.0, 1.0) < p; }
+    int pick(int n) { return std::min(n - 1, int(uniform(0.0, double(n)))); }
+    glm::dvec3 direction(double min_y = -1.0, double max_y = 1.0) {  // unit, y in [min_y, max_y]
+        const double y = uniform(min_y, max_y), a = uniform(0.0, 2.0 * kPi), r = std::sqrt(std::max(0.0, 1.0 - y * y));
+        return {r * std::cos(a), y, r * std::sin(a)};
+    }
+
+private:
+    std::mt19937_64 g_;
+};
+
+json vec(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+struct Generated {
+    json scene;
+    std::string summary;  // one line: what kind of scene this is
+};
+
+// Seed → scene. `g` is the casters' size; everything else is placed relative to it.
+Generated generate(uint64_t seed) {
+    Rng r(seed);
+    const double g = r.log_uniform(0.01, 400.0);
+    // The group's centre: near the origin, or far off-centre (up to 10⁴, and 10⁴ caster sizes).
+    glm::dvec3 centre = r.chance(0.4) ? r.direction(-0.3, 0.3) * (g * r.uniform(0.0, 2.0))
+                                      : r.direction(-0.3, 0.3) * std::min(1e4, g * r.log_uniform(10.0, 1e4));
+    json s;
+    s["background"] = {0.05, 0.05, 0.06};
+    s["ambient"] = {{"intensity", 0.08}};
+    s["lighting"] = {{"nan_check", "on"}};
+    s["materials"] = {{"floor", {{"albedo", {0.8, 0.8, 0.8}}}},
+                      {"red", {{"albedo", {0.8, 0.3, 0.2}}}},
+                      {"green", {{"albedo", {0.3, 0.7, 0.35}}}},
+                      {"glass", {{"albedo", {0.3, 0.5, 0.9}}, {"opacity", 0.35}}},
+                      {"amber", {{"albedo", {0.9, 0.6, 0.1}}, {"opacity", 0.6}}}};
+    // The receiver: a horizontal floor up to 10⁴ across under the group (not centred on it).
+    const double floor_half = std::min(5e3, g * r.log_uniform(4.0, 2e3));
+    const glm::dvec3 floor_at = centre + glm::dvec3(r.uniform(-0.5, 0.5), 0.0, r.uniform(-0.5, 0.5)) * std::min(floor_half, 3.0 * g);
+    s["objects"] = json::array();
+    s["objects"].push_back({{"mesh", "plane"}, {"material", "floor"}, {"position", vec(floor_at)},
+                            {"scale", {2.0 * floor_half, 1.0, 2.0 * floor_half}}});
+    // Casters: 1-4 cubes and icosahedra above the floor, some thin, mirrored, translucent.
+    struct Ball {
+        glm::dvec3 at;
+        double radius;
+    };
+    std::vector<Ball> balls;
+    const int casters = 1 + r.pick(4);
+    int thin = 0, mirrored = 0, translucent = 0;
+    for (int i = 0; i < casters; ++i) {
+        glm::dvec3 scale(g * r.uniform(0.3, 1.2), g * r.uniform(0.3, 1.2), g * r.uniform(0.3, 1.2));
+        if (r.chance(0.3)) {  // a slab down to 0.001 thick
+            scale[r.pick(3)] = r.log_uniform(0.001, std::max(0.0011, 0.05 * g));
+            ++thin;
+        }
+        if (r.chance(0.25)) {  // a mirroring transform (negative determinant)
+            scale[r.pick(3)] *= -1.0;
+            ++mirrored;
+        }
+        const double radius = 0.5 * glm::length(scale);  // the unit cube's corners (icosahedron: inside)
+        const glm::dvec3 at = centre + glm::dvec3(g * r.uniform(-1.5, 1.5), radius + g * r.uniform(0.05, 1.5), g * r.uniform(-1.5, 1.5));
+        const char* materials[] = {"red", "green", "glass", "amber"};
+        const int material = r.pick(4);
+        translucent += material >= 2;
+        s["objects"].push_back({{"mesh", r.chance(0.5) ? "cube" : "icosahedron"},
+                                {"material", materials[material]},
+                                {"position", vec(at)},
+                                {"scale", vec(scale)},
+                                {"rotation_deg", {r.uniform(-180, 180), r.uniform(-180, 180), r.uniform(-180, 180)}}});
+        balls.push_back({at, radius});
+    }
+    const glm::dvec3 middle = centre + glm::dvec3(0.0, g, 0.0);
+    // The light: outside every caster, above the floor.
+    const auto outside = [&](const glm::dvec3& p) {
+        if (p.y < centre.y + 0.1 * g) return false;
+        for (const Ball& b : balls)
+            if (glm::length(p - b.at) < b.radius * 1.05 + 1e-3 * g) return false;
+        return true;
+    };
+    json light;
+    std::string kind;
+    const int type = r.pick(3);
+    if (type == 0) {
+        glm::dvec3 d = r.chance(0.1) ? glm::dvec3(0.0, -1.0, 0.0) : r.direction(-1.0, -0.25);
+        light = {{"type", "directional"}, {"direction", vec(d)}};
+        kind = "directional";
+    } else {
+        glm::dvec3 p;
+        double outer = 0.0;
+        bool far_spot = type == 2 && r.chance(0.35);
+        for (int tries = 0;; ++tries) {
+            // Near lights: 0.3-20 caster sizes from the group's middle (casters 0.01-1000 away);
+            // far spots: 10²-10⁵ away with a cone that just covers the group.
+            // (A far spot's cone stays ≥ ~0.5°: a float cosine cannot draw a narrower one.)
+            const double distance = far_spot ? std::clamp(r.log_uniform(100.0, 1e5), 30.0 * g, 300.0 * g) : g * r.log_uniform(0.3, 20.0);
+            p = middle + r.direction(0.2, 1.0) * distance;
+            if (outside(p) || tries > 50) break;
+        }
+        if (type == 1) {
+            light = {{"type", "point"}, {"position", vec(p)}};
+            kind = "point";
+        } else {
+            const glm::dvec3 aim = middle + glm::dvec3(r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5)) * g;
+            const double cover = glm::degrees(std::atan2(3.0 * g, glm::length(aim - p)));
+            outer = far_spot ? std::min(89.0, cover * r.uniform(1.0, 2.0)) : (r.chance(0.3) ? r.uniform(80.0, 90.0) : r.uniform(15.0, 80.0));
+            light = {{"type", "spot"}, {"position", vec(p)}, {"direction", vec(aim - p)},
+                     {"outer_deg", outer}, {"inner_deg", outer * r.uniform(0.3, 0.9)}};
+            kind = far_spot ? "far spot" : "spot";
+        }
+        char text[96];
+        std::snprintf(text, sizeof text, " at %.3g from the group", glm::length(p - middle));
+        kind += text;
+        if (type == 2) {
+            std::snprintf(text, sizeof text, ", outer %.1f deg", outer);
+            kind += text;
+        }
+    }
+    light["cast_shadows"] = true;
+    light["intensity"] = 1.2;
+    if (r.chance(0.25)) light["shadow"] = {{"pcf", 3}, {"filter", r.chance(0.5) ? "bilinear" : "nearest"}};
+    s["lights"] = json::array({light});
+    // The camera: 4-8 caster sizes from the group, looking down at it.
+    const glm::dvec3 eye = middle + r.direction(0.3, 0.85) * (g * r.uniform(4.0, 8.0));
+    const double far = glm::length(eye - floor_at) + 3.0 * floor_half;
+    s["camera"] = {{"position", vec(eye)}, {"target", vec(middle)}, {"fov_y_deg", 55}, {"near", 0.05 * g}, {"far", far}};
+
+    char line[256];
+    std::snprintf(line, sizeof line, "g=%.3g off-centre %.3g, floor %.3g across, %d casters (%d thin, %d mirrored, %d translucent), %s",
+                  g, glm::length(centre), 2.0 * floor_half, casters, thin, mirrored, translucent, kind.c_str());
+    return {s, line};
+}
+
+struct Options {
+    uint64_t first = 0;
+    int count = 50;
+    int width = 128, height = 96;
+    bool keep = false;
+};
+
+int usage(const char* why) {
+    std::fprintf(stderr, "lab4_random_scenes: %s\nusage: lab4_random_scenes --first N --count M [--size WxH] [--keep]\n", why);
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const bool has_value = i + 1 < argc;
+        if (a == "--first" && has_value) o.first = std::stoull(argv[++i]);
+        else if (a == "--count" && has_value) o.count = std::stoi(argv[++i]);
+        else if (a == "--size" && has_value && std::sscanf(argv[++i], "%dx%d", &o.width, &o.height) == 2) {}
+        else if (a == "--keep") o.keep = true;
+        else return usage(("unknown option " + a).c_str());
+    }
+    if (o.count < 1 || o.width < 8 || o.height < 8) return usage("bad numbers");
+    const std::string dir = test_output_dir("lab4_random");
+    fs::create_directories(dir);
+    int failed = 0;
+    double worst_share = -1.0;
+    std::string worst;
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < o.count; ++k) {
+        const uint64_t seed = o.first + uint64_t(k);
+        const Generated gen = generate(seed);
+        const std::string name = dir + "/seed" + std::to_string(seed);
+        std::ofstream(name + ".json") << gen.scene.dump(1);
+        const std::string args = "--scene " + quoted(name + ".json") + " --headless --validate --out " + quoted(name + ".png") +
+                                 " --width " + std::to_string(o.width) + " --height " + std::to_string(o.height);
+        const std::string command = std::string(LAB4_EXE) + " " + args;
+        std::error_code ec;
+        fs::remove(name + ".png", ec);
+        const RunResult run = run_lab(LAB4_EXE, args, name + ".log");
+        std::string verdict;
+        double share = 1.0;
+        if (run.exit_code != 0 || !fs::exists(name + ".png")) {
+            verdict = "lab4_shadows exited " + std::to_string(run.exit_code) + ":\n" + run.log;
+        } else {
+            const lab::Image8 actual = lab::read_png(name + ".png");
+            const ref::ShadowReference reference = ref::render_shadow_reference(lab::load_scene(name + ".json"), o.width, o.height);
+            const lab::Image8 s = ref::encode_srgb(reference.shadowed);
+            ref::ShadowMetricOptions options;
+            options.band = kBand;
+            const lab::Image8 u = ref::encode_srgb(reference.unshadowed), z = ref::encode_srgb(reference.unlit);
+            const ref::ShadowMetric m = ref::shadow_metric(actual, s, u, z, options);
+            share = m.wrong_side_share;
+            const size_t magenta = ref::magenta_pixels(actual);
+            if (magenta) verdict = std::to_string(magenta) + " NaN/Inf (magenta) pixels";
+            else if (share > kMaxWrongShare) {
+                verdict = "wrong side: " + m.line() + "\n  first wrong pixels (x, y: lab | reference | unshadowed | unlit, sRGB):";
+                int shown = 0;
+                for (size_t i = 0; i < m.wrong.size() && shown < 6; ++i) {
+                    if (!m.wrong[i]) continue;
+                    char px[200];
+                    const auto rgb = [&](const lab::Image8& im) {
+                        return std::to_string(im.rgba[4 * i]) + "," + std::to_string(im.rgba[4 * i + 1]) + "," + std::to_string(im.rgba[4 * i + 2]);
+                    };
+                    std::snprintf(px, sizeof px, "\n    %zu, %zu: %s | %s | %s | %s", i % size_t(o.width), i / size_t(o.width),
+                                  rgb(actual).c_str(), rgb(s).c_str(), rgb(u).c_str(), rgb(z).c_str());
+                    verdict += px;
+                    ++shown;
+                }
+            }
+            if (!verdict.empty() || o.keep) {
+                lab::write_png(name + "_expected.png", s);
+                lab::write_png(name + "_metric.png", ref::shadow_metric_picture(s, m));
+            }
+            std::printf("seed %llu: %s  [%s]\n", (unsigned long long)seed, m.line().c_str(), gen.summary.c_str());
+        }
+        if (share > worst_share) {
+            worst_share = share;
+            worst = "seed " + std::to_string(seed) + " (" + gen.summary + ")";
+        }
+        if (!verdict.empty()) {
+            ++failed;
+            std::printf("FAIL seed %llu: %s\n  scene: %s\n  reproduce: %s\n  pictures: %s{.png,_expected.png,_metric.png}\n",
+                        (unsigned long long)seed, verdict.c_str(), gen.scene.dump().c_str(), command.c_str(), name.c_str());
+        } else if (!o.keep) {
+            for (const char* ext : {".png", ".log"}) fs::remove(name + ext, ec);
+        }
+        std::fflush(stdout);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("lab4_random_scenes: %d of %d scenes (seeds %llu..%llu) within %.1f %% wrong side; worst %.4f %%: %s; %.1f s\n",
+                o.count - failed, o.count, (unsigned long long)o.first, (unsigned long long)(o.first + o.count - 1),
+                100.0 * kMaxWrongShare, 100.0 * worst_share, worst.c_str(), seconds);
+    return failed ? 1 : 0;
+}
