@@ -266,6 +266,21 @@ TEST(Lab4Shadows, TwoOverlappingTranslucentObjectsMultiply) {
     EXPECT_LE(in.max_diff, 2);
 }
 
+// A 178° spot cone (outer 89°, near the format's 90° limit) with casters near the edge of its
+// cone: it gets a cube map (one perspective map would stop at 170°) and every shadow is there.
+TEST(Lab4Shadows, SpotConeOf178Degrees) {
+    json s = base_scene();
+    s["lights"].push_back(spot({0, 1.2, 0}, {0, -1, 0}, 89));
+    s["objects"].push_back(floor(30));
+    s["objects"].push_back(thing("cube", "box", {2.6, 0.6, 0.3}, {0.4, 0.4, 0.4}));      // 65° off the axis
+    s["objects"].push_back(thing("cube", "stone", {-0.4, 1.0, -2.4}, {0.3, 0.3, 0.3}));  // 85° off the axis
+    const Judged j = judge("spot_178", s, 2);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "spot_178"));
+    EXPECT_GT(std::count(j.metric.state.begin(), j.metric.state.end(), 2), 300);
+    EXPECT_LE(j.metric.wrong_side_share, 0.001);
+}
+
 // --- coverage -------------------------------------------------------------------------------------
 
 TEST(Lab4Shadows, CasterBehindTheLightCastsNothing) {
