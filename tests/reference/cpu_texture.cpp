@@ -311,7 +311,7 @@ std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int wi
         glm::dvec3 dpx, dpy;
         uv_derivatives(*data, hit, tri, &dx, &dy, &dpx, &dpy);
         const glm::dvec2 scale(m.uv_scale);
-        return lod(data->texture(map, m.sampler)->levels[0], dx * scale, dy * scale);
+        return lod(data->texture(map, m.sampler, &map != &m.specular_map)->levels[0], dx * scale, dy * scale);
     };
 }
 
