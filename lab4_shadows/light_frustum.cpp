@@ -94,9 +94,7 @@ LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>
     return f;
 }
 
-LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, double outer_deg,
-                      const std::vector<Box>& casters, const std::vector<Box>& receivers) {
-    (void)receivers;  // the map ends beyond the farthest caster (fit_depth)
+LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, double outer_deg, const std::vector<Box>& casters) {
     const glm::dvec3 d = unit_or_down(direction);
     LightFrustum f;
     f.origin = position;
@@ -105,20 +103,16 @@ LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, d
     // in proportion: a narrow, far spot keeps its texels small).
     const double half_tan = std::max(std::tan(glm::radians(std::clamp(outer_deg, 0.0, kWidestSpotMapDeg))) * 1.02, 1e-3);
     const double fov = 2.0 * std::atan(half_tan);
-    std::vector<Box> in_cone;
-    for (const Box& b : casters)
-        if (in_spot_cone(b, position, d, outer_deg)) in_cone.push_back(b);
     // A box's depth along the axis: −z in view space.
     const glm::dmat4 world_view = view * glm::translate(glm::dmat4(1.0), -position);
-    fit_depth(in_cone, [&](const Box& b) { return -lab::transformed(b, world_view).hi.z; },
+    fit_depth(casters, [&](const Box& b) { return -lab::transformed(b, world_view).hi.z; },
               [&](const Box& b) { return -lab::transformed(b, world_view).lo.z; }, f.near_plane, f.far_plane);
     f.view_projection = flip_y(glm::perspectiveRH_ZO(fov, 1.0, f.near_plane, f.far_plane)) * view;
     f.texel = 2.0 * half_tan;
     return f;
 }
 
-LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters, const std::vector<Box>& receivers) {
-    (void)receivers;  // the map ends beyond the farthest caster (fit_depth)
+LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters) {
     // A point's depth in the face it falls in is its largest |coordinate| relative to the light,
     // so a box's nearest depth is its Chebyshev distance from the light, its farthest depth at
     // most its farthest corner.

@@ -33,13 +33,13 @@ struct LightFrustum {
     glm::dmat4 world_to_clip(const glm::dmat4& relative) const;
 };
 
-// `receivers`: every object; `casters`: the objects with cast_shadows.
+// `casters`: the objects the map holds (the shadow pass's casters_for: those that can shadow a
+// receiver, in a spot's cone); `receivers`: every object. Perspective maps need only the casters:
+// their depth range ends just beyond the farthest one.
 LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>& casters, const std::vector<Box>& receivers);
-LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, double outer_deg,
-                      const std::vector<Box>& casters, const std::vector<Box>& receivers);
-// A point light's cube; also a spot light's when its cone is too wide for one map (`casters`:
-// those in the cone).
-LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters, const std::vector<Box>& receivers);
+LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, double outer_deg, const std::vector<Box>& casters);
+// A point light's cube; also a spot light's when its cone is too wide for one map.
+LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters);
 
 // Spot lights with an outer angle above this get a cube map, as point lights do: one perspective
 // map would need a field of view of twice the outer angle (180° at 90°: impossible), and its

@@ -111,14 +111,14 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
 // becomes the checkerboard and one warning line.
 void Renderer::load_textures(const Lighting& lighting) {
     using Encoding = lab::TexelEncoding;
+    const Encoding encodings[3] = {Encoding::Srgb, Encoding::Linear, Encoding::Srgb};  // albedo, specular, emissive
     std::map<TextureKey, bool> mipmaps;  // [map, encoding]: does any material want its mip chain?
     uint32_t textured = 0;
     for (const lab::MaterialDesc& m : lighting.materials) {
         textured += m.has_maps();
-        const std::pair<const std::string*, Encoding> maps[] = {
-            {&m.albedo_map, Encoding::Srgb}, {&m.specular_map, Encoding::Linear}, {&m.emissive_map, Encoding::Srgb}};
-        for (const auto& [map, encoding] : maps)
-            if (!map->empty()) mipmaps[{*map, encoding}] |= m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::None;
+        const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
+        for (int i = 0; i < 3; ++i)
+            if (!maps[i]->empty()) mipmaps[{*maps[i], encodings[i]}] |= m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::None;
     }
     for (const auto& [key, mips] : mipmaps) {
         const lab::TextureLoad load = lab::load_texture_image(key.first, int(vk_.properties().limits.maxImageDimension2D));
@@ -140,10 +140,7 @@ void Renderer::load_textures(const Lighting& lighting) {
         const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
         for (uint32_t binding = 0; binding < 3; ++binding)  // identical samplers are one VkSampler
             lab::write_image_descriptor(vk_, material_sets_.back(), binding, samplers_.get(m.sampler),
-                                        (maps[binding]->empty() ? white_
-                                                                : textures_.at({*maps[binding], binding == 1 ? lab::TexelEncoding::Linear
-                                                                                                             : lab::TexelEncoding::Srgb}))
-                                            .image.view);
+                                        (maps[binding]->empty() ? white_ : textures_.at({*maps[binding], encodings[binding]})).image.view);
     }
     warnings_.insert(warnings_.end(), samplers_.warnings().begin(), samplers_.warnings().end());
     if (textured > 0)

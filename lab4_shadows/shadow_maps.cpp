@@ -195,19 +195,17 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
         // Only the lookup's numbers: the map still holds what they describe.
         (*out)[slot] = map.gpu;
         (*out)[slot].params.x *= light.shadow.normal_offset / float(map.depth.size);
-        (*out)[slot].texel.x /= float(map.depth.size);
     }
 }
 
-// Draws the casters into the current pass: opaque ones with the bound depth-only pipeline, or
-// (translucent) the translucent ones with both translucent pipelines.
+// Draws the map's casters (`in_map`, casters_for) into the current pass: opaque ones with the
+// bound depth-only pipeline, or (translucent) the translucent ones with both translucent pipelines.
 void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting,
-                              bool translucent, const lab::LightDesc& light) const {
-    const bool spot = light.type == lab::LightDesc::Type::Spot;
+                              bool translucent, const std::vector<bool>& in_map) const {
     const lab::GpuMesh* bound = nullptr;
-    for (const Caster& c : objects_) {
-        if (!c.casts || translucent_material(lighting, c.material) != translucent) continue;
-        if (spot && !in_spot_cone(c.box, glm::dvec3(light.position), glm::dvec3(light.direction), light.outer_deg)) continue;
+    for (size_t i = 0; i < objects_.size(); ++i) {
+        const Caster& c = objects_[i];
+        if (!in_map[i] || translucent_material(lighting, c.material) != translucent) continue;
         const ShadowConstants constants{glm::mat4(world_to_clip * glm::dmat4(c.model)),
                                         glm::vec4(1.0f - lighting.materials[c.material].opacity)};
         if (c.mesh != bound) {
@@ -219,40 +217,37 @@ void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_cl
     }
 }
 
-// The casters a light's map is fitted to: those that can shadow a receiver — another object, or
-// themselves when their mesh is not convex (a convex object shadows only its own unlit side).
-std::vector<Box> ShadowMaps::casters_for(const lab::LightDesc& light) const {
-    const bool directional = light.type == lab::LightDesc::Type::Directional;
-    std::vector<Box> out;
+// Which objects a light's map holds (per object): those with cast_shadows, inside a spot's cone,
+// that can shadow a receiver — another object, or themselves when their mesh is not convex (a
+// convex object shadows only its own unlit side). The map is fitted to them and draws only them:
+// a floor under everything would only spread the texels and cost a draw.
+std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light) const {
+    const glm::dvec3 position(light.position), direction(light.direction);
+    const bool directional = light.type == lab::LightDesc::Type::Directional, spot = light.type == lab::LightDesc::Type::Spot;
+    std::vector<bool> in_map(objects_.size(), false);
     for (size_t i = 0; i < objects_.size(); ++i) {
-        if (!objects_[i].casts) continue;
-        for (size_t j = 0; j < objects_.size(); ++j) {
-            if (i == j && objects_[i].convex) continue;
-            const Box &c = objects_[i].box, &r = objects_[j].box;
-            if (directional ? can_shadow(c, r, glm::dvec3(light.direction)) : can_shadow_from(c, r, glm::dvec3(light.position))) {
-                out.push_back(c);
-                break;
-            }
-        }
+        const Box& c = objects_[i].box;
+        if (!objects_[i].casts || (spot && !in_spot_cone(c, position, direction, light.outer_deg))) continue;
+        for (size_t j = 0; j < objects_.size() && !in_map[i]; ++j)
+            if (i != j || !objects_[i].convex)
+                in_map[i] = directional ? can_shadow(c, objects_[j].box, direction) : can_shadow_from(c, objects_[j].box, position);
     }
-    return out;
+    return in_map;
 }
 
 void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting) {
     const glm::dvec3 position(light.position), direction(light.direction);
-    const std::vector<Box> casters = casters_for(light);
+    const std::vector<bool> in_map = casters_for(light);
+    std::vector<Box> casters;
+    for (size_t i = 0; i < objects_.size(); ++i)
+        if (in_map[i]) casters.push_back(objects_[i].box);
     LightFrustum f;
-    if (light.type == lab::LightDesc::Type::Directional) {
+    if (light.type == lab::LightDesc::Type::Directional)
         f = fit_directional(direction, casters, receiver_boxes_);
-    } else if (!map.cube) {
-        f = fit_spot(position, direction, light.outer_deg, casters, receiver_boxes_);
-    } else {  // a point light, or a spot too wide for one map: its casters in the cone
-        std::vector<Box> in_cone;
-        for (const Box& b : casters)
-            if (light.type == lab::LightDesc::Type::Point || in_spot_cone(b, position, direction, light.outer_deg))
-                in_cone.push_back(b);
-        f = fit_point(position, in_cone, receiver_boxes_);
-    }
+    else if (!map.cube)
+        f = fit_spot(position, direction, light.outer_deg, casters);
+    else  // a point light, or a spot too wide for one map
+        f = fit_point(position, casters);
     const bool perspective = light.type != lab::LightDesc::Type::Directional;
     // Perspective depth = a − b / distance (glm::perspectiveRH_ZO), for the cube lookup and the view.
     const double a = f.far_plane / (f.far_plane - f.near_plane), b = f.far_plane * f.near_plane / (f.far_plane - f.near_plane);
@@ -261,7 +256,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
     // normal_offset / resolution.
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
-    map.gpu.texel = glm::vec4(float(f.texel), perspective ? 0.0f : float(f.far_plane - f.near_plane), 0.0f, 0.0f);
+    map.gpu.texel = glm::vec4(float(f.texel / map.depth.size), perspective ? 0.0f : float(f.far_plane - f.near_plane), 0.0f, 0.0f);
 
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);
@@ -270,13 +265,13 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
         // (grows with how steeply the triangle's depth changes across a texel).
         vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
-        draw_casters(cmd, world_to_clip, lighting, false, light);
+        draw_casters(cmd, world_to_clip, lighting, false, in_map);
         vkCmdEndRenderPass(cmd);
         if (!translucent_) continue;
         map.transmittance.begin(cmd, face);
         for (const auto* pipeline : {&nearest_[map.cube], &multiply_[map.cube]}) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
-            draw_casters(cmd, world_to_clip, lighting, true, light);
+            draw_casters(cmd, world_to_clip, lighting, true, in_map);
         }
         vkCmdEndRenderPass(cmd);
     }

@@ -22,7 +22,7 @@ struct GpuShadow {
     glm::mat4 view_projection;  // (world − origin) → the map's clip space (2D maps)
     glm::vec4 origin;           // xyz: the light (spot, cube), the fitted box's centre (directional)
     glm::vec4 params;           // x: normal offset (world; perspective: per unit distance), y, z: depth = y − z / distance
-    glm::vec4 texel;            // x: one texel's world size (perspective: per unit distance), y: orthographic depth range
+    glm::vec4 texel;            // x: one texel's world size (perspective: at distance 1), y: orthographic depth range
 };
 using GpuShadows = std::array<GpuShadow, kMaxShadowLights>;  // [slot]
 
@@ -71,9 +71,9 @@ private:
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting, bool translucent,
-                      const lab::LightDesc& light) const;
+                      const std::vector<bool>& in_map) const;
     uint32_t clamp_resolution(int requested, bool cube) const;
-    std::vector<Box> casters_for(const lab::LightDesc& light) const;
+    std::vector<bool> casters_for(const lab::LightDesc& light) const;
 
     const lab::VulkanContext& vk_;
     std::vector<Caster> objects_;

@@ -58,12 +58,12 @@ TEST(LightFrustum, CasterBesideTheLightOverAHugeFloor) {
     const Box caster = box({-0.2, 0.8, -0.2}, {0.2, 1.2, 0.2});
     EXPECT_FALSE(can_shadow_from(floor, caster, light));
     EXPECT_TRUE(can_shadow_from(caster, floor, light));
-    const LightFrustum f = fit_point(light, {caster}, {caster, floor});
+    const LightFrustum f = fit_point(light, {caster});
     EXPECT_LE(f.near_plane, 0.8);   // the caster's nearest depth (Chebyshev distance 0.8)
     EXPECT_GE(f.far_plane, 1.2);    // its farthest
     EXPECT_LE(f.far_plane, 1.2 * 1.5 + 1e-12);
     // A spot pointing down the same way: the same caster is inside its depth range.
-    const LightFrustum s = fit_spot(light, {0, -1, 0}, 40, {caster}, {caster, floor});
+    const LightFrustum s = fit_spot(light, {0, -1, 0}, 40, {caster});
     expect_inside(s, box({-0.1, 0.8, -0.1}, {0.1, 1.2, 0.1}), "caster under the spot");
 }
 
@@ -93,7 +93,7 @@ TEST(LightFrustum, WideSpotsUseCubeMaps) {
     point.type = lab::LightDesc::Type::Point;
     EXPECT_TRUE(uses_cube_map(point));
     const Box caster = box({-0.1, -2.1, -0.1}, {0.1, -1.9, 0.1});
-    const LightFrustum f = fit_spot({0, 0, 0}, {0, -1, 0}, 60.0, {caster}, {caster});
+    const LightFrustum f = fit_spot({0, 0, 0}, {0, -1, 0}, 60.0, {caster});
     // A point 59.5° off the axis, 2 units down: inside the map.
     const double a = glm::radians(59.5);
     const glm::dvec3 q = in_map(f, {2.0 * std::tan(a), -2.0, 0.0});

@@ -26,7 +26,7 @@ layout(set = 1, binding = 2) uniform sampler2D emissive_map;
 // line up, so the tiling is much harder to see.
 vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
     if (!DISTORTED) return texture(albedo_map, uv).rgb;
-    // EXERCISE distorted_uv: with (u, v) = uv, amplitude (k0.xy), frequency (k0.zw), position_frequency (k1.xy), scales (k1.zw), weights (k2.xy) and what uv_offset's whole repeats change (phases k3.xy, lookup offsets k4.xy, k4.zw): d = uv + (k0.x·sin(k0.z·v + k1.x·P.y + k3.x), k0.y·cos(k0.w·u + k1.y·P.x + k3.y)), then mix(mix(A(d), A(k1.z·uv + k4.xy), k2.x), A(k1.w·uv + k4.zw), k2.y). Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers.
+    // EXERCISE distorted_uv: with (u, v) = uv, amplitude (k0.xy), frequency (k0.zw), position_frequency (k1.xy), scales (k1.zw), weights (k2.xy) and what uv_offset's whole repeats change (phases k3.xy, lookup offsets k4.xy, k4.zw): d = uv + (k0.x·sin(k0.z·v + k1.x·P.y + k3.x), k0.y·cos(k0.w·u + k1.y·P.x + k3.y)), then mix(mix(A(d), A(k1.z·uv + k4.xy), k2.x), A(k1.w·uv + k4.zw), k2.y). Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers, Lab3Render.DistortedSamplingWholeOffsetRepeat, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.DistortedSamplingHugeOffset.
     // STUB: return texture(albedo_map, uv).rgb;  // no distortion: the tiling shows as plainly as without it
     const vec4 k0 = m.distortion[0], k1 = m.distortion[1], k2 = m.distortion[2], k3 = m.distortion[3], k4 = m.distortion[4];
     const vec2 d = uv + vec2(k0.x * sin(k0.z * uv.y + k1.x * P.y + k3.x), k0.y * cos(k0.w * uv.x + k1.y * P.x + k3.y));
