@@ -54,6 +54,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         lit.material = uint32_t(lighting.material_index(object.material));
         const Box box = lab::transformed(it->second.bounds, glm::dmat4(lit.model));  // world space
         items_.back().centre = glm::vec3(0.5 * (box.lo + box.hi));
+        items_.back().mirrored = glm::determinant(glm::dmat3(glm::dmat4(lit.model))) < 0.0;
         const bool convex = object.mesh_path.empty() && object.mesh != "torus";  // primitives but the torus
         casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows, convex});
     }
@@ -166,7 +167,8 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
         draw_ambient_only(cmd, frame.slot, lighting);  // objects without maps
     }
     // Lab 4: opaque objects first; translucent ones (opacity < 1) over them, farthest first, each
-    // with its back faces before its front faces, so every surface blends over what is behind it.
+    // with its far faces before its near ones, so every surface blends over what is behind it. The
+    // far faces are the back faces, unless a mirroring transform turned the winding inside out.
     opaque_.clear();
     translucent_.clear();
     for (const DrawItem& item : items_)
@@ -175,8 +177,10 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     std::sort(translucent_.begin(), translucent_.end(), [&](const DrawItem* a, const DrawItem* b) {
         return glm::distance(a->centre, camera_position) > glm::distance(b->centre, camera_position);
     });
-    for (const DrawItem* item : translucent_)
-        for (Pass pass : {Pass::BackFaces, Pass::FrontFaces}) draw_lit(cmd, frame.slot, lighting, false, {item}, pass);
+    for (const DrawItem* item : translucent_) {
+        const Pass far = item->mirrored ? Pass::FrontFaces : Pass::BackFaces, near = item->mirrored ? Pass::BackFaces : Pass::FrontFaces;
+        for (Pass pass : {far, near}) draw_lit(cmd, frame.slot, lighting, false, {item}, pass);
+    }
     if (lighting.options.markers) draw_markers(cmd, frame.slot, lighting);
     if (lighting.shadow_view >= 0 && lighting.shadow_view < int(lighting.lights.size()))  // lab 4: the shadow-map view
         shadow_maps_->draw_view(shadow_view_, cmd, lighting.shadow_slots()[size_t(lighting.shadow_view)], frame.extent);

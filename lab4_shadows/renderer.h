@@ -62,6 +62,7 @@ private:
         ObjectConstants constants;
         LitConstants lit{};
         glm::vec3 centre{0.0f};  // lab 4: of its bounding box, to sort translucent objects
+        bool mirrored = false;   // lab 4: a negative determinant: its far faces wind counter-clockwise
     };
     // Lab 4: opaque objects first, then each translucent one twice: its back faces, its front faces.
     enum class Pass { Opaque, BackFaces, FrontFaces };

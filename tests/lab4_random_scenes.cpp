@@ -5,7 +5,7 @@
 // the widest the format allows (90°), opaque and translucent casters down to 0.001 thick,
 // mirrored and non-uniform transforms, groups of casters far from the origin.
 //
-//   lab4_random_scenes --first N --count M [--size WxH] [--keep] [--known FILE]
+//   lab4_random_scenes --first N --count M [--size WxH] [--keep]
 //
 // For each seed: the scene is written as JSON, rendered by the real lab (headless, validation on)
 // and judged with the shadow error metric (docs/testing.md) against the reference, with a 2-pixel
@@ -35,7 +35,6 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <set>
 #include <string>
 
 namespace {
@@ -189,7 +188,6 @@ struct Options {
     int count = 50;
     int width = 128, height = 96;
     bool keep = false;
-    std::string known;  // a file of seeds still open (tests/lab4_random_known.txt)
 };
 
 int usage(const char* why) {
@@ -208,22 +206,12 @@ int main(int argc, char** argv) {
         else if (a == "--count" && has_value) o.count = std::stoi(argv[++i]);
         else if (a == "--size" && has_value && std::sscanf(argv[++i], "%dx%d", &o.width, &o.height) == 2) {}
         else if (a == "--keep") o.keep = true;
-        else if (a == "--known" && has_value) o.known = argv[++i];
         else return usage(("unknown option " + a).c_str());
     }
     if (o.count < 1 || o.width < 8 || o.height < 8) return usage("bad numbers");
     const std::string dir = test_output_dir("lab4_random");
     fs::create_directories(dir);
-    // Seeds still open (a defect found, not fixed yet): run and reported, but they do not fail the
-    // run; one that passes is reported so that it comes off the list.
-    std::set<uint64_t> known;
-    if (!o.known.empty()) {
-        std::ifstream in(o.known);
-        if (!in) return usage(("cannot read " + o.known).c_str());
-        for (std::string line; std::getline(in, line);)
-            if (!line.empty() && line[0] != '#') known.insert(std::stoull(line));
-    }
-    int failed = 0, known_failed = 0;
+    int failed = 0;
     double worst_share = -1.0;
     std::string worst;
     const auto start = std::chrono::steady_clock::now();
@@ -278,23 +266,18 @@ int main(int argc, char** argv) {
             worst_share = share;
             worst = "seed " + std::to_string(seed) + " (" + gen.summary + ")";
         }
-        if (!verdict.empty() && known.count(seed)) {
-            ++known_failed;
-            std::printf("KNOWN OPEN seed %llu (%s): %s\n", (unsigned long long)seed, o.known.c_str(), verdict.c_str());
-        } else if (!verdict.empty()) {
+        if (!verdict.empty()) {
             ++failed;
             std::printf("FAIL seed %llu: %s\n  scene: %s\n  reproduce: %s\n  pictures: %s{.png,_expected.png,_metric.png}\n",
                         (unsigned long long)seed, verdict.c_str(), gen.scene.dump().c_str(), command.c_str(), name.c_str());
-        } else {
-            if (known.count(seed)) std::printf("seed %llu passes now: take it off %s\n", (unsigned long long)seed, o.known.c_str());
-            if (!o.keep)
-                for (const char* ext : {".png", ".log"}) fs::remove(name + ext, ec);
+        } else if (!o.keep) {
+            for (const char* ext : {".png", ".log"}) fs::remove(name + ext, ec);
         }
         std::fflush(stdout);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("lab4_random_scenes: %d of %d scenes (seeds %llu..%llu) within %.1f %% wrong side, %d known open; worst %.4f %%: %s; %.1f s\n",
-                o.count - failed - known_failed, o.count, (unsigned long long)o.first, (unsigned long long)(o.first + o.count - 1),
-                100.0 * kMaxWrongShare, known_failed, 100.0 * worst_share, worst.c_str(), seconds);
+    std::printf("lab4_random_scenes: %d of %d scenes (seeds %llu..%llu) within %.1f %% wrong side; worst %.4f %%: %s; %.1f s\n",
+                o.count - failed, o.count, (unsigned long long)o.first, (unsigned long long)(o.first + o.count - 1),
+                100.0 * kMaxWrongShare, 100.0 * worst_share, worst.c_str(), seconds);
     return failed ? 1 : 0;
 }

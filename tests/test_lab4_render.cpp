@@ -266,6 +266,38 @@ TEST(Lab4Shadows, TwoOverlappingTranslucentObjectsMultiply) {
     EXPECT_LE(in.max_diff, 2);
 }
 
+// A translucent cube under a mirroring transform (one negative scale: inside out, its far faces
+// wind counter-clockwise) beside an unmirrored one: both shadows and both cubes, seen through
+// each other's layers, match the reference. The camera pass draws a mirrored object's front
+// faces first (they are its far ones); in the other order the cube was darker than the reference.
+TEST(Lab4Shadows, MirroredTranslucentCubeMatchesTheReference) {
+    json s = base_scene();
+    s["lights"].push_back(point({0.5, 3.0, 1.2}));
+    s["objects"].push_back(floor());
+    s["objects"].push_back(thing("cube", "glass", {-0.7, 0.8, 0.2}, {1.1, -0.9, 1.0}, {20, 35, 10}));
+    s["objects"].push_back(thing("cube", "amber", {0.9, 0.7, -0.3}, {0.9, 0.8, 0.9}, {-15, 20, 5}));
+    const Judged j = judge("mirrored_translucent", s, 2);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "mirrored_translucent"));
+    // Where a translucent layer shows (ids above the objects' own: the layers mix into them), the
+    // picture is the reference's within the render tests' rounding, on average and nearly everywhere.
+    size_t layered = 0, off = 0;
+    double sum = 0.0;
+    for (size_t i = 0; i < j.reference.shadowed.object_id.size(); ++i) {
+        if (j.reference.shadowed.object_id[i] <= 3) continue;
+        ++layered;
+        int diff = 0;
+        for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(j.actual.rgba[4 * i + c]) - int(j.shadowed.rgba[4 * i + c])));
+        sum += diff;
+        off += diff > 4;
+    }
+    EXPECT_GT(layered, 2000u);
+    EXPECT_LE(sum / double(std::max<size_t>(layered, 1)), 1.0) << "mean difference where the cubes show";
+    EXPECT_LE(off, layered / 100) << "pixels of the cubes more than 4/255 off";
+    EXPECT_LE(j.metric.wrong_side_share, 0.001);
+    EXPECT_LE(j.metric.mae, 1.0);
+}
+
 // A 178° spot cone (outer 89°, near the format's 90° limit) with casters near the edge of its
 // cone: it gets a cube map (one perspective map would stop at 170°) and every shadow is there.
 TEST(Lab4Shadows, SpotConeOf178Degrees) {
