@@ -266,6 +266,29 @@ TEST(Lab4Shadows, TwoOverlappingTranslucentObjectsMultiply) {
     EXPECT_LE(in.max_diff, 2);
 }
 
+// A spot light 10⁵ units away (0.1° cone) over a translucent slab (3 × 0.2 × 20) whose top is 2
+// units above the floor, lit at 60° from the vertical: its shadow falls 3.5 units aside, beside the
+// slab. The test that tells "behind the nearest translucent caster" used to be 1e-4 in
+// perspective depth, ≈ 3.4 units here (δ/D times the map's depth slope): the floor 2 units behind
+// was not darkened. Now it is 2 texels in world units (~0.3 here).
+TEST(Lab4Shadows, TranslucentShadowFromAFarSpot) {
+    json s = base_scene();
+    s["camera"] = {{"position", {-3, 16, 14}}, {"target", {-3, 0, 0}}, {"fov_y_deg", 50}, {"near", 0.5}, {"far", 1000}};
+    const double d = 1e5, sin60 = std::sqrt(0.75);
+    const std::vector<double> dir = {-sin60, -0.5, 0.0};  // the way the light travels
+    s["lights"].push_back({{"type", "spot"}, {"position", {sin60 * d, 0.5 * d, 0}}, {"direction", dir},
+                           {"outer_deg", 0.1}, {"inner_deg", 0.05}, {"cast_shadows", true}});
+    s["objects"].push_back(floor(400));
+    s["objects"].push_back(thing("cube", "glass", {0, 2.0, 0}, {3, 0.2, 20}));
+    const Judged j = judge("translucent_far_spot", s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "translucent_far_spot"));
+    const Interior in = shadow_interior(j, 0);
+    EXPECT_GT(in.pixels, 300u) << "no translucent shadow interior to check";
+    EXPECT_LE(in.max_diff, 2);
+    EXPECT_LE(j.metric.wrong_side_share, 0.001);
+}
+
 // A translucent cube under a mirroring transform (one negative scale: inside out, its far faces
 // wind counter-clockwise) beside an unmirrored one: both shadows and both cubes, seen through
 // each other's layers, match the reference. The camera pass draws a mirrored object's front
