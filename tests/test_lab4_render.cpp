@@ -266,6 +266,44 @@ TEST(Lab4Shadows, TwoOverlappingTranslucentObjectsMultiply) {
     EXPECT_LE(in.max_diff, 2);
 }
 
+// The default casters 300 units from the origin and 14 units to the side of a floor 40 across,
+// under a directional light: the light's box sits off the floor's centre, so its y translation
+// must flip with the rest of the y row (before: no shadow at all), and a float would lose the
+// digits of world → clip out here unless the lookup is relative to the box.
+TEST(Lab4Stress, DirectionalLightOverCastersFarFromTheOrigin) {
+    json s = casters_scene(directional({-0.6, -1, -0.35}));
+    const glm::dvec3 floor_at(300, 40, -120), aside(12, 0, 8);
+    const auto move = [](json& v, const glm::dvec3& by) {
+        const std::vector<double> p = v.is_null() ? std::vector<double>{0, 0, 0} : v.get<std::vector<double>>();
+        v = {p[0] + by.x, p[1] + by.y, p[2] + by.z};
+    };
+    s["objects"][0]["scale"] = {40, 1, 40};
+    s["objects"][0]["cast_shadows"] = false;  // as in the default scene: the box fits the casters alone
+    move(s["objects"][0]["position"], floor_at);
+    for (size_t i = 1; i < s["objects"].size(); ++i) move(s["objects"][i]["position"], floor_at + aside);
+    move(s["camera"]["position"], floor_at + aside);
+    move(s["camera"]["target"], floor_at + aside);
+    const Judged j = judge("directional_off_centre", s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "directional_off_centre"));
+    EXPECT_GT(std::count(j.metric.state.begin(), j.metric.state.end(), 2), 500);
+    EXPECT_LE(j.metric.wrong_side_share, 0.002);
+}
+
+// A point light 2 units above a floor 3000 across, a cube 1 unit under the light: the map's depth
+// range is fitted to the cube, not to the floor (before: near ≈ 3, the cube clipped away).
+TEST(Lab4Stress, PointLightBesideACasterOverAHugeFloor) {
+    json s = base_scene();
+    s["lights"].push_back(point({0, 2.0, 0}));
+    s["objects"].push_back(floor(3000));
+    s["objects"].push_back(thing("cube", "box", {0.3, 0.9, 0.2}, {0.4, 0.4, 0.4}, {0, 30, 0}));
+    const Judged j = judge("point_huge_floor", s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "point_huge_floor"));
+    EXPECT_GT(std::count(j.metric.state.begin(), j.metric.state.end(), 2), 500);
+    EXPECT_LE(j.metric.wrong_side_share, 0.002);
+}
+
 // A spot light 10⁵ units away (0.1° cone) over a translucent slab (3 × 0.2 × 20) whose top is 2
 // units above the floor, lit at 60° from the vertical: its shadow falls 3.5 units aside, beside the
 // slab. The test that tells "behind the nearest translucent caster" used to be 1e-4 in
