@@ -64,10 +64,11 @@ Image8 downsample(const Image8& image, TexelEncoding encoding) {
     out.width = std::max(image.width / 2, 1);
     out.height = std::max(image.height / 2, 1);
     out.rgba.resize(size_t(out.width) * size_t(out.height) * 4);
-    // Decoded once: the parent in linear numbers.
+    // Decoded once: the parent in linear numbers (a byte has 256 values: a table, not a pow per texel).
+    double decode[256];
+    for (int v = 0; v < 256; ++v) decode[v] = encoding == TexelEncoding::Srgb ? srgb_to_linear(uint8_t(v)) : v / 255.0;
     std::vector<double> linear(image.rgba.size());
-    for (size_t i = 0; i < image.rgba.size(); ++i)
-        linear[i] = encoding == TexelEncoding::Srgb && i % 4 != 3 ? srgb_to_linear(image.rgba[i]) : image.rgba[i] / 255.0;
+    for (size_t i = 0; i < image.rgba.size(); ++i) linear[i] = i % 4 != 3 ? decode[image.rgba[i]] : image.rgba[i] / 255.0;
     std::vector<std::vector<std::pair<int, double>>> columns(size_t(out.width)), rows(size_t(out.height));
     for (int x = 0; x < out.width; ++x) columns[size_t(x)] = footprint(x, image.width, out.width);
     for (int y = 0; y < out.height; ++y) rows[size_t(y)] = footprint(y, image.height, out.height);
