@@ -44,6 +44,7 @@ using json = nlohmann::json;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxWrongShare = 0.001;  // 0.1 % of the compared pixels
 constexpr int kBand = 2;                  // pixels around the reference's edges left out
+constexpr int kTieLevels = 2;             // 1/255: a wrong state this close to the reference is a tie
 
 // Uniform numbers from the seed alone: mt19937_64 is specified bit for bit, and so is this
 // conversion (the standard's distributions are not, across library versions).
@@ -237,8 +238,25 @@ int main(int argc, char** argv) {
             ref::ShadowMetricOptions options;
             options.band = kBand;
             const lab::Image8 u = ref::encode_srgb(reference.unshadowed), z = ref::encode_srgb(reference.unlit);
-            const ref::ShadowMetric m = ref::shadow_metric(actual, s, u, z, options);
+            ref::ShadowMetric m = ref::shadow_metric(actual, s, u, z, options);
+            // A pixel within 2/255 of the reference in every channel is not on the wrong side: under
+            // a translucent shadow that lets about half the light through, f sits at the ½ of the
+            // state test, and one level of rounding flips whole regions (seed 1788: f = 0.504 | 0.490
+            // for 90,81,61 | 89,80,61). Such ties are counted and printed, not judged.
+            size_t ties = 0;
+            for (size_t i = 0; i < m.wrong.size(); ++i) {
+                if (!m.wrong[i]) continue;
+                int diff = 0;
+                for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(actual.rgba[4 * i + c]) - int(s.rgba[4 * i + c])));
+                if (diff <= kTieLevels) m.wrong[i] = 0, --m.wrong_side, ++ties;
+            }
+            if (m.receivers > m.banded) m.wrong_side_share = double(m.wrong_side) / double(m.receivers - m.banded);
             share = m.wrong_side_share;
+            // For reading a failure: how many wrong pixels show two or more translucent objects.
+            // There the lab blends whole objects in order of their centres, the reference per pixel
+            // (a limit of sorted blending, lab4_shadows/README.md), whatever the shadows.
+            size_t mixed = 0;
+            for (size_t i = 0; i < m.wrong.size(); ++i) mixed += m.wrong[i] && reference.shadowed.translucent_objects[i] >= 2;
             const size_t magenta = ref::magenta_pixels(actual);
             if (magenta) verdict = std::to_string(magenta) + " NaN/Inf (magenta) pixels";
             else if (share > kMaxWrongShare) {
@@ -260,7 +278,8 @@ int main(int argc, char** argv) {
                 lab::write_png(name + "_expected.png", s);
                 lab::write_png(name + "_metric.png", ref::shadow_metric_picture(s, m));
             }
-            std::printf("seed %llu: %s  [%s]\n", (unsigned long long)seed, m.line().c_str(), gen.summary.c_str());
+            std::printf("seed %llu: %s ties=%zu wrong_under_2_translucent=%zu  [%s]\n", (unsigned long long)seed, m.line().c_str(),
+                        ties, mixed, gen.summary.c_str());
         }
         if (share > worst_share) {
             worst_share = share;

@@ -162,6 +162,10 @@ struct RefImage {
     std::vector<int> object_id;      // −1 = background
     std::vector<int> triangle_id;    // −1 = background
     std::vector<Hit> hits;           // full hit record per pixel (for lighting labs and tests)
+    // Lab 4 (render_shadowed): how many different translucent objects show in front of the opaque
+    // surface. Where it is 2 or more, the order of the blend is per pixel here but per object in
+    // the lab (sorted by centre), which can differ where such objects overlap on screen.
+    std::vector<uint8_t> translucent_objects;
 
     int index(int x, int y) const { return y * width + x; }
 };

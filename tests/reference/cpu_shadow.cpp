@@ -120,6 +120,7 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
     image.object_id.assign(n, -1);
     image.triangle_id.assign(n, -1);
     image.hits.assign(n, Hit{});
+    image.translucent_objects.assign(n, 0);
 
     const auto pixel = [&](int x, int y) {
         const size_t i = size_t(y) * size_t(width) + size_t(x);
@@ -185,6 +186,10 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
             tri = (tri + 2) * 7919 + h.triangle_id;
         }
         image.object_id[i] = id & 0x3fffffff;
+        std::vector<int> objects;
+        for (const Hit& h : layers)
+            if (std::find(objects.begin(), objects.end(), h.object_id) == objects.end()) objects.push_back(h.object_id);
+        image.translucent_objects[i] = uint8_t(std::min<size_t>(objects.size(), 255));
         image.triangle_id[i] = tri & 0x3fffffff;
     };
     // Rows r ≡ t (mod T) on thread t: the result does not depend on the thread count.
