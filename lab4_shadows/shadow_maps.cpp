@@ -13,6 +13,8 @@ struct ShadowConstants {
     glm::vec4 transmittance;  // x: 1 − opacity
 };
 constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+// How far behind the nearest translucent caster a receiver must be to be behind it, in texels.
+constexpr double kTranslucentTexels = 2.0;
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
 
@@ -256,7 +258,14 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
     // normal_offset / resolution.
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
-    map.gpu.texel = glm::vec4(float(f.texel / map.depth.size), perspective ? 0.0f : float(f.far_plane - f.near_plane), 0.0f, 0.0f);
+    // A receiver less than kTranslucentTexels texels (world units, t) behind the nearest translucent
+    // caster is that caster itself (shadows.glsl). In depth: orthographic t / (far − near);
+    // perspective, with a texel τ·z wide at distance z, (a − b/(z + t)) − (a − b/z) = b·t / (z(z + t))
+    // = K / z with K = b·k·τ / (1 + k·τ), k = kTranslucentTexels: one division per pixel.
+    const double tau = f.texel / map.depth.size;
+    map.gpu.translucent = glm::vec4(perspective ? float(b * kTranslucentTexels * tau / (1.0 + kTranslucentTexels * tau))
+                                                : float(kTranslucentTexels * tau / (f.far_plane - f.near_plane)),
+                                    0.0f, 0.0f, 0.0f);
 
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);

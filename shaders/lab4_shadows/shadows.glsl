@@ -24,8 +24,8 @@ struct ShadowSlot {
     vec4 params;           // x: normal offset in world units (perspective maps: per unit of distance),
                            // y, z: a perspective map's depth = y − z / distance along its axis;
                            // z > 0 also marks a perspective 2D map (spot)
-    vec4 texel;            // x: one texel's world size (perspective: per unit of distance),
-                           // y: an orthographic map's depth range (far − near)
+    vec4 translucent;      // x: how far (in depth) a receiver must lie behind the nearest translucent
+                           // caster to be behind it; perspective maps: divided by P's distance along the axis
 };
 layout(std140, set = 0, binding = 3) uniform Shadows { ShadowSlot shadow_slots[4]; };
 // The same depth maps twice: read as numbers (nearest) and through a comparison sampler
@@ -39,21 +39,18 @@ layout(set = 0, binding = 7) uniform samplerCubeShadow cube_compare[4];
 layout(set = 0, binding = 8) uniform sampler2D translucency[4];
 layout(set = 0, binding = 9) uniform samplerCube cube_translucency[4];
 
-// The distance along the map's axis that a depth value stands for: perspective depth is
-// y − z / distance, orthographic depth grows linearly over the range (from the near plane).
-float map_distance(ShadowSlot s, float depth) {
-    return s.params.z > 0.0 ? s.params.z / max(s.params.y - depth, 1e-30) : depth * s.texel.y;
+// A receiver less than 2 texels (in world units) behind the nearest translucent caster is that
+// caster itself. In depth that is a constant for an orthographic map and K / z for a perspective
+// one (z: P's distance along the axis; K from the map, shadow_maps.cpp): a fixed tolerance in
+// depth would not do, perspective depth crowds towards 1 (1e-4 is metres at a far light).
+float depth_tolerance(ShadowSlot s, float z) {
+    return s.params.z > 0.0 ? s.translucent.x / max(z, 1e-30) : s.translucent.x;
 }
 
-// A receiver less than this many texels (in world units) behind the nearest translucent caster is
-// that caster itself. Compared as distances, not depths: perspective depth crowds towards 1, so a
-// fixed depth difference would be metres at a far light and nothing near it.
-const float TRANSLUCENT_TEXELS = 2.0;
-
 // One tap's light: 1 or 0 from the depth compare, times the translucent casters' transmittance
-// when the point lies behind the nearest of them by more than `tolerance` (world units).
-float tap(float lit, bool translucent, vec2 transmittance, float ref, ShadowSlot s, float tolerance) {
-    if (translucent && map_distance(s, ref) > map_distance(s, transmittance.g) + tolerance) lit *= transmittance.r;
+// when the point lies behind the nearest of them by more than `tolerance` (in depth, see above).
+float tap(float lit, bool translucent, vec2 transmittance, float ref, float tolerance) {
+    if (translucent && ref > transmittance.g + tolerance) lit *= transmittance.r;
     return lit;
 }
 
@@ -75,7 +72,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // farther away compares as 1, lit where the texel holds no caster (cleared to 1), in shadow
     // where it does. In front of the near plane (0): only casters clamped there can be nearer.
     const float ref = clamp(ndc.z, 0.0, 1.0);
-    const float tolerance = TRANSLUCENT_TEXELS * s.texel.x * distance;
+    const float tolerance = translucent ? depth_tolerance(s, clip.w) : 0.0;
     // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
     // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
     // around it and weights the results like a linear filter (what a comparison sampler does with
@@ -85,7 +82,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // A texel's weight per axis: nearest 1 (the padding texel N: 0); bilinear 1 − f, 1, …, 1, f.
     if (pcf == 1 && filter_mode == 0)  // a single tap, a single texel: one plain lookup
         return tap(ref <= texture(depth_map, uv).r ? 1.0 : 0.0, translucent, translucent ? texture(translucent_map, uv).rg : vec2(1.0), ref,
-                   s, tolerance);
+                   tolerance);
     const vec2 size = vec2(textureSize(depth_map, 0));
     const vec2 texel = filter_mode == 1 ? uv * size - 0.5 : uv * size;
     const vec2 base = floor(texel) - float(pcf / 2);  // the first texel of the footprint
@@ -103,7 +100,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // Translucent casters: their transmittance where P projects (once, not per tap; not in full shadow).
     const float opaque = sum / float(pcf * pcf);
     return tap(opaque, translucent && opaque > 0.0, translucent && opaque > 0.0 ? texture(translucent_map, uv).rg : vec2(1.0), ref,
-               s, tolerance);
+               tolerance);
 }
 
 // The cube map's depth of P for the face that direction d falls in: that face's axis is d's
@@ -129,6 +126,7 @@ float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerC
     const vec3 u = axis.x > 0.0 ? vec3(0, 1, 0) : vec3(1, 0, 0);
     const vec3 w = cross(axis, u);
     const float step = 2.0 * z / float(textureSize(depth_map, 0).x);  // one texel at P's distance
+    const float tolerance = translucent ? depth_tolerance(s, z) : 0.0;
     float sum = 0.0;
     for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
         for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
@@ -136,7 +134,7 @@ float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerC
             // Beyond the far plane (past the farthest caster): compared as 1, as in shadow_2d.
             const float ref = clamp(cube_depth_of(v, d, s), 0.0, 1.0);
             const float lit = filter_mode == 1 ? texture(compare_map, vec4(d, ref)) : (ref <= texture(depth_map, d).r ? 1.0 : 0.0);
-            sum += tap(lit, translucent, translucent ? texture(translucent_map, d).rg : vec2(1.0), ref, s, TRANSLUCENT_TEXELS * step);
+            sum += tap(lit, translucent, translucent ? texture(translucent_map, d).rg : vec2(1.0), ref, tolerance);
         }
     }
     return sum / float(pcf * pcf);
