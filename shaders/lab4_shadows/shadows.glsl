@@ -40,12 +40,9 @@ layout(set = 0, binding = 8) uniform sampler2D translucency[4];
 layout(set = 0, binding = 9) uniform samplerCube cube_translucency[4];
 
 // A receiver less than 2 texels (in world units) behind the nearest translucent caster is that
-// caster itself. In depth that is a constant for an orthographic map and K / z for a perspective
-// one (z: P's distance along the axis; K from the map, shadow_maps.cpp): a fixed tolerance in
-// depth would not do, perspective depth crowds towards 1 (1e-4 is metres at a far light).
-float depth_tolerance(ShadowSlot s, float z) {
-    return s.params.z > 0.0 ? s.translucent.x / max(z, 1e-30) : s.translucent.x;
-}
+// caster itself. In depth that is K / z, z = P's distance along the map's axis (an orthographic
+// map: z = 1, K as it is; K from the map, shadow_maps.cpp): a fixed tolerance in depth would not
+// do, perspective depth crowds towards 1 (1e-4 of it is metres at a far light).
 
 // One tap's light: 1 or 0 from the depth compare, times the translucent casters' transmittance
 // when the point lies behind the nearest of them by more than `tolerance` (in depth, see above).
@@ -64,7 +61,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     const vec3 at = P - s.origin.xyz + N * s.params.x * distance;  // relative to the origin
     const vec4 clip = s.view_projection * vec4(at, 1.0);
     if (!(clip.w > 0.0)) return 1.0;  // behind a spot light: outside its cone anyway
-    const vec3 ndc = clip.xyz / clip.w;
+    const float inv_w = 1.0 / clip.w;  // w: P's distance along a spot's axis; 1 for a directional map
+    const vec3 ndc = clip.xyz * inv_w;
     const vec2 uv = ndc.xy * 0.5 + 0.5;
     // Outside the map's coverage nothing was fitted to cast onto it: lit.
     if (!(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))) return 1.0;
@@ -72,7 +70,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // farther away compares as 1, lit where the texel holds no caster (cleared to 1), in shadow
     // where it does. In front of the near plane (0): only casters clamped there can be nearer.
     const float ref = clamp(ndc.z, 0.0, 1.0);
-    const float tolerance = translucent ? depth_tolerance(s, clip.w) : 0.0;
+    const float tolerance = s.translucent.x * inv_w;  // translucent casters, see above
     // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
     // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
     // around it and weights the results like a linear filter (what a comparison sampler does with
@@ -126,7 +124,7 @@ float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerC
     const vec3 u = axis.x > 0.0 ? vec3(0, 1, 0) : vec3(1, 0, 0);
     const vec3 w = cross(axis, u);
     const float step = 2.0 * z / float(textureSize(depth_map, 0).x);  // one texel at P's distance
-    const float tolerance = translucent ? depth_tolerance(s, z) : 0.0;
+    const float tolerance = translucent ? s.translucent.x / z : 0.0;  // translucent casters, see above
     float sum = 0.0;
     for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
         for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
