@@ -4,7 +4,7 @@
 #   lab4_on3  lab 4 on lab 3's default scene (no light casts shadows: must cost ≤ 1.10 × lab 3)
 #   off       lab 4's default scene with every light's cast_shadows off (no pass, no lookup)
 #   static    lab 4's default scene (maps rendered once, then only the lookups)
-#   animated  the same with LAB_ANIMATE_LIGHTS=1 (every map re-rendered every frame)
+#   animated  the same with --dev-animate-lights (every map re-rendered every frame)
 # Rounds interleave the five so that load from other processes hits all alike; each line is a
 # --benchmark median (ms); the summary gives the median over rounds and the spread (min–max).
 #   bash bench/lab4_shadows.sh [rounds] [frames]     (LP_NUM_THREADS=2 unless set)
@@ -35,7 +35,7 @@ for ((r = 0; r < rounds; ++r)); do
   times[lab4_on3]+=" $(median "$build/lab4_shadows/lab4_shadows" --scene "$root/scenes/lab3_textures.json")"
   times[off]+=" $(median "$build/lab4_shadows/lab4_shadows" --scene "$tmp/off.json")"
   times[static]+=" $(median "$build/lab4_shadows/lab4_shadows")"
-  times[animated]+=" $(LAB_ANIMATE_LIGHTS=1 median "$build/lab4_shadows/lab4_shadows")"
+  times[animated]+=" $(median "$build/lab4_shadows/lab4_shadows" --dev-animate-lights)"
 done
 echo "LP_NUM_THREADS=$LP_NUM_THREADS 1280x720, $rounds rounds of --benchmark $frames (median ms per round)"
 python3 - "${times[lab3]}" "${times[lab4_on3]}" "${times[off]}" "${times[static]}" "${times[animated]}" <<'PY'

@@ -67,7 +67,7 @@ done
 [ "${IDLE:-1}" = 0 ] && exit 0  # IDLE=0: frame costs only
 for lab in "${labs[@]}"; do
   rm -f "$tmp/status"
-  LAB_STATUS_FILE="$tmp/status" "$build/$lab/$lab" >/dev/null 2>&1 &
+  "$build/$lab/$lab" --dev-status-file "$tmp/status" >/dev/null 2>&1 &
   pid=$!
   # Start-up (lab 4 compiles its shader variants at the first frame: seconds on lavapipe), then 3 s
   # for the frames after it (ImGui settling) before the idle window is measured.

@@ -99,43 +99,43 @@ void camera_panel(lab::LabApp& app, Camera& camera, Controls& controls, const la
 }  // namespace
 
 int main(int argc, char** argv) {
-    const lab::LabInfo info{LAB_NAME, LAB_DEFAULT_SCENE_DIR "/" LAB_NAME ".json"};  // scenes/<lab>.json
+    const lab::LabInfo info{LAB_NAME, LAB_DEFAULT_SCENE_DIR "/" LAB_NAME ".json", LAB_SHADER_DIR};  // scenes/<lab>.json
     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
         Camera camera = Camera::from_scene(scene.camera);
         Controls controls;
         Lighting lighting = Lighting::from_scene(scene);
-        auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, LAB_SHADER_DIR);
+        auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, app.shader_dir());
         lab::SceneReloader reloader(app.options().scene, scene);
         const auto rebuild = [&](const lab::Scene& fresh) {
             Lighting reloaded = Lighting::from_scene(fresh);  // replaces the panel's edits (the panel says so)
-            auto next = std::make_unique<Renderer>(app.vk(), app.target(), fresh, reloaded, LAB_SHADER_DIR);
+            auto next = std::make_unique<Renderer>(app.vk(), app.target(), fresh, reloaded, app.shader_dir());
             app.wait_idle();  // in-flight frames may still use the old buffers
             renderer = std::move(next);
             lighting = std::move(reloaded);
         };
 
-        app.run({
-            [&](float dt) {
-                // The window draws on demand: a reload (or its error) is something new to show.
-                if (app.has_window() && reloader.poll(app.key_pressed(GLFW_KEY_R), rebuild)) app.request_redraw();
-                update_camera(app, camera, controls, dt);
-            },
-            [&] {
-                camera_panel(app, camera, controls, reloader);
-                lighting_panel(lighting);
-                if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms())) {
-                    // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
-                    auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, LAB_SHADER_DIR);
-                    app.wait_idle();
-                    renderer = std::move(next);
-                }
-            },
-            [&](const lab::Frame& frame) {
-                const double aspect = double(frame.extent.width) / double(frame.extent.height);
-                renderer->draw(frame, glm::mat4(camera.view()), glm::mat4(camera.projection(aspect)),
-                               glm::vec3(camera.world_position()), lighting);
-            },
-            [&] { return reloader.scene().background; },
-        });
+        lab::LabApp::Callbacks callbacks;
+        callbacks.update = [&](float dt) {
+            // The window draws on demand: a reload (or its error) is something new to show.
+            if (app.has_window() && reloader.poll(app.key_pressed(GLFW_KEY_R), rebuild)) app.request_redraw();
+            update_camera(app, camera, controls, dt);
+        };
+        callbacks.ui = [&] {
+            camera_panel(app, camera, controls, reloader);
+            lighting_panel(lighting);
+            if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms())) {
+                // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
+                auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, app.shader_dir());
+                app.wait_idle();
+                renderer = std::move(next);
+            }
+        };
+        callbacks.record = [&](const lab::Frame& frame) {
+            const double aspect = double(frame.extent.width) / double(frame.extent.height);
+            renderer->draw(frame, glm::mat4(camera.view()), glm::mat4(camera.projection(aspect)),
+                           glm::vec3(camera.world_position()), lighting);
+        };
+        callbacks.background = [&] { return reloader.scene().background; };
+        app.run(callbacks);
     });
 }

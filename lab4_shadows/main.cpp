@@ -4,7 +4,7 @@
 // (directional: fitted orthographic, spot: perspective, point: cube) before the camera's
 // pass, which reads it with PCF; translucent objects blend over the others and let
 // 1 − opacity of the light through. The "Shadows" panel edits it all live, shows a light's
-// map and animates the lights (LAB_ANIMATE_LIGHTS=1 does that headless, for
+// map and animates the lights (--dev-animate-lights does that headless, for
 // --benchmark). Everything else (Vulkan, window, UI, scene file, image
 // loading, texture upload, samplers) comes from common/.
 //
@@ -27,7 +27,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 
 namespace {
@@ -115,55 +114,54 @@ void camera_panel(lab::LabApp& app, Camera& camera, Controls& controls, const la
 }  // namespace
 
 int main(int argc, char** argv) {
-    const lab::LabInfo info{LAB_NAME, LAB_DEFAULT_SCENE_DIR "/" LAB_NAME ".json"};  // scenes/<lab>.json
+    const lab::LabInfo info{LAB_NAME, LAB_DEFAULT_SCENE_DIR "/" LAB_NAME ".json", LAB_SHADER_DIR};  // scenes/<lab>.json
     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
         Camera camera = Camera::from_scene(scene.camera);
         Controls controls;
         Lighting lighting = Lighting::from_scene(scene);
-        const char* animate = std::getenv("LAB_ANIMATE_LIGHTS");
-        lighting.animate_lights = animate && std::string(animate) == "1";
-        if (const char* view = std::getenv("LAB_SHADOW_VIEW")) lighting.shadow_view = std::atoi(view);  // headless pictures
-        auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, LAB_SHADER_DIR);
+        lighting.animate_lights = app.options().dev.animate_lights;  // headless: what --benchmark times
+        lighting.shadow_view = app.options().dev.shadow_view;        // headless pictures of a map
+        auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, app.shader_dir());
         lab::SceneReloader reloader(app.options().scene, scene);
         const auto rebuild = [&](const lab::Scene& fresh) {
             Lighting reloaded = Lighting::from_scene(fresh);  // replaces the panel's edits (the panel says so)
             reloaded.animate_lights = lighting.animate_lights;
-            auto next = std::make_unique<Renderer>(app.vk(), app.target(), fresh, reloaded, LAB_SHADER_DIR);
+            auto next = std::make_unique<Renderer>(app.vk(), app.target(), fresh, reloaded, app.shader_dir());
             app.wait_idle();  // in-flight frames may still use the old buffers
             renderer = std::move(next);
             lighting = std::move(reloaded);
         };
 
-        app.run({
-            [&](float dt) {
-                // The window draws on demand: a reload (or its error) is something new to show.
-                if (app.has_window() && reloader.poll(app.key_pressed(GLFW_KEY_R), rebuild)) app.request_redraw();
-                update_camera(app, camera, controls, dt);
-                if (lighting.animate_lights) {  // lab 4: every light circles the Y axis, 0.5 rad/s
-                    animate_lights(lighting, dt);
-                    app.request_redraw();
-                }
-            },
-            [&] {
-                camera_panel(app, camera, controls, reloader);
-                lighting_panel(lighting);
-                shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_map_renders());  // lab 4
-                if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms()) ||
-                    !renderer->shadows_match(lighting)) {  // lab 4: or other lights cast shadows, other resolutions
-                    // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
-                    auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, LAB_SHADER_DIR);
-                    app.wait_idle();
-                    renderer = std::move(next);
-                }
-            },
-            [&](const lab::Frame& frame) {
-                const double aspect = double(frame.extent.width) / double(frame.extent.height);
-                renderer->draw(frame, glm::mat4(camera.view()), glm::mat4(camera.projection(aspect)),
-                               glm::vec3(camera.world_position()), lighting);
-            },
-            [&] { return reloader.scene().background; },
-            [&](const lab::Frame& frame) { renderer->draw_shadow_maps(frame, lighting); },  // lab 4: before the pass
-        });
+        lab::LabApp::Callbacks callbacks;
+        callbacks.update = [&](float dt) {
+            // The window draws on demand: a reload (or its error) is something new to show.
+            if (app.has_window() && reloader.poll(app.key_pressed(GLFW_KEY_R), rebuild)) app.request_redraw();
+            update_camera(app, camera, controls, dt);
+            if (lighting.animate_lights) {  // lab 4: every light circles the Y axis, 0.5 rad/s
+                animate_lights(lighting, dt);
+                app.request_redraw();
+            }
+        };
+        callbacks.ui = [&] {
+            camera_panel(app, camera, controls, reloader);
+            lighting_panel(lighting);
+            shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_map_renders());  // lab 4
+            if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms()) ||
+                !renderer->shadows_match(lighting)) {  // lab 4: or other lights cast shadows, other resolutions
+                // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
+                auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, app.shader_dir());
+                app.wait_idle();
+                renderer = std::move(next);
+            }
+        };
+        callbacks.record = [&](const lab::Frame& frame) {
+            const double aspect = double(frame.extent.width) / double(frame.extent.height);
+            renderer->draw(frame, glm::mat4(camera.view()), glm::mat4(camera.projection(aspect)),
+                           glm::vec3(camera.world_position()), lighting);
+        };
+        callbacks.background = [&] { return reloader.scene().background; };
+        callbacks.before_pass = [&](const lab::Frame& frame) { renderer->draw_shadow_maps(frame, lighting); };  // lab 4: before the pass
+        app.run(callbacks);
         std::printf("%s: %d shadow map renders\n", LAB_NAME, renderer->shadow_map_renders());
     });
 }

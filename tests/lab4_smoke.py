@@ -6,7 +6,7 @@
 CASE is one of:
   maps_once    the default scene, 3 frames, validation on: every shadow map is rendered once
                (a static scene), no validation message;
-  animated     LAB_ANIMATE_LIGHTS=1: every map is rendered every frame (3 maps x 3 frames);
+  animated     --dev-animate-lights: every map is rendered every frame (3 maps x 3 frames);
   no_shadows   lab 3's scene (no light casts shadows): no shadow pass at all;
   stress       light exactly along -Y and +Y, a point and a spot light inside a cube, a caster
                touching the spot light's near plane, resolution 1 and the device maximum, zero
@@ -135,8 +135,8 @@ def main():
             if rc != 0 or renders(out) != 3:
                 fail("default scene: want exit 0 and 3 map renders in 3 frames (one per light)", out)
         elif case == "animated":
-            rc, out = run(exe, small + ["--frames", "3", "--scene", default_scene, "--out", tmp + "/a.png"],
-                          {"LAB_ANIMATE_LIGHTS": "1"})
+            rc, out = run(exe, small + ["--frames", "3", "--scene", default_scene, "--out", tmp + "/a.png",
+                                        "--dev-animate-lights"])
             if rc != 0 or renders(out) != 9:
                 fail("animated lights: want exit 0 and 9 map renders in 3 frames", out)
         elif case == "no_shadows":

@@ -36,13 +36,17 @@ inline std::string test_output_dir(const std::string& sub) {
 }
 
 // Runs `exe` with `args` (already quoted), stdout + stderr into `log_path`. With $LAB_EXE_DIR set
-// the lab binary of the same name in that folder runs instead (the grader's build of a stubbed lab).
+// the lab binary of the same name in that folder runs instead (the grader's build of a stubbed lab),
+// and with $LAB_SHADER_DIR set too, it loads its shaders from there (--dev-shader-dir): the grader
+// runs these tests and cannot put a flag on the lab's command line itself.
 inline RunResult run_lab(const std::string& exe, const std::string& args, const std::string& log_path) {
     std::filesystem::create_directories(std::filesystem::path(log_path).parent_path());
     const char* exe_dir = std::getenv("LAB_EXE_DIR");
-    const std::string program =
-        exe_dir && *exe_dir ? std::string(exe_dir) + "/" + std::filesystem::path(exe).filename().string() : exe;
-    const std::string command = quoted(program) + " " + args + " > " + quoted(log_path) + " 2>&1";
+    const char* shader_dir = std::getenv("LAB_SHADER_DIR");
+    const bool graded = exe_dir && *exe_dir;
+    const std::string program = graded ? std::string(exe_dir) + "/" + std::filesystem::path(exe).filename().string() : exe;
+    const std::string dev_args = graded && shader_dir && *shader_dir ? " --dev-shader-dir " + quoted(shader_dir) : "";
+    const std::string command = quoted(program) + dev_args + " " + args + " > " + quoted(log_path) + " 2>&1";
     const int status = std::system(command.c_str());
     RunResult r;
     if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);

@@ -172,6 +172,56 @@ TEST(Cli, UsageListsEveryOptionAndDefault) {
     EXPECT_GT(std::count(text.begin(), text.end(), '\n'), 10);
 }
 
+// --- developer options (common/app/dev_options.h) --------------------------------
+
+TEST(Cli, DeveloperOptionsAreOffByDefault) {
+    const lab::DevOptions d = parse({}).dev;
+    EXPECT_TRUE(d.status_file.empty());
+    EXPECT_EQ(d.fail_after_submit, 0);
+    EXPECT_FALSE(d.validation_probe);
+    EXPECT_FALSE(d.no_blit);
+    EXPECT_TRUE(d.shader_dir.empty());
+    EXPECT_TRUE(d.scene_dir.empty());
+    EXPECT_FALSE(d.animate_lights);
+    EXPECT_EQ(d.shadow_view, -1);
+}
+
+TEST(Cli, EveryDeveloperOption) {
+    const lab::Options o = parse({"--dev-status-file", "s.txt", "--dev-fail-after-submit=3", "--dev-validation-probe",
+                                  "--dev-no-blit", "--dev-shader-dir", "/tmp/sh", "--dev-scene-dir=/tmp/sc",
+                                  "--dev-animate-lights", "--dev-shadow-view", "2", "--width", "64"});
+    EXPECT_EQ(o.dev.status_file, "s.txt");
+    EXPECT_EQ(o.dev.fail_after_submit, 3);
+    EXPECT_TRUE(o.dev.validation_probe);
+    EXPECT_TRUE(o.dev.no_blit);
+    EXPECT_EQ(o.dev.shader_dir, "/tmp/sh");
+    EXPECT_EQ(o.dev.scene_dir, "/tmp/sc");
+    EXPECT_TRUE(o.dev.animate_lights);
+    EXPECT_EQ(o.dev.shadow_view, 2);
+    EXPECT_EQ(o.width, 64u);  // the students' options still parse beside them
+}
+
+TEST(Cli, DeveloperOptionMistakes) {
+    EXPECT_CONTAINS(error_of({"--dev-fail-after-submit", "x"}), "expected a whole number");
+    EXPECT_CONTAINS(error_of({"--dev-fail-after-submit", "0"}), "out of range");
+    EXPECT_CONTAINS(error_of({"--dev-shadow-view", "-1"}), "out of range");
+    EXPECT_CONTAINS(error_of({"--dev-no-blit=1"}), "takes no value");
+    EXPECT_CONTAINS(error_of({"--dev-status-file"}), "missing value");
+    EXPECT_CONTAINS(error_of({"--dev-animate-light"}), "did you mean --dev-animate-lights?");
+    EXPECT_CONTAINS(error_of({"--dev-whatever-else"}), "see --help-dev");
+}
+
+TEST(Cli, HelpDevListsEveryDeveloperOptionAndHelpDoesNot) {
+    EXPECT_TRUE(parse({"--help-dev"}).help_dev);
+    EXPECT_TRUE(parse({"--width", "x", "--help-dev"}).help_dev);  // wins over mistakes, as --help does
+    const std::string dev = lab::dev_usage("lab4_shadows");
+    const std::string students = lab::usage("lab4_shadows");
+    for (const lab::DevOptionSpec& spec : lab::dev_option_specs()) {
+        EXPECT_CONTAINS(dev, std::string("--") + spec.name);
+        EXPECT_EQ(students.find(spec.name), std::string::npos) << spec.name << " is in the students' --help";
+    }
+}
+
 // --- PNG files ------------------------------------------------------------------
 
 namespace {

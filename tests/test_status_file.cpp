@@ -1,4 +1,4 @@
-// The status line a window writes for bench/soak.sh (common/status_file.h): one whole line per
+// The status line a window writes for bench/soak.py (common/dev/status_file.h): one whole line per
 // frame, and the same line marked " idle" once the lab has gone idle after drawing.
 #include "status_file.h"
 
@@ -18,7 +18,7 @@ std::string read_all(const std::filesystem::path& path) {
 TEST(StatusFile, FramesCountedIdleMarkedAndClearedByTheNextFrame) {
     const auto path = std::filesystem::path(testing::TempDir()) / "lab_status_test.txt";
     std::filesystem::remove(path);
-    lab::StatusFile status(path.string());
+    lab::dev::StatusFile status(path.string());
     EXPECT_FALSE(std::filesystem::exists(path));  // nothing before the first frame
 
     status.frame_drawn(640, 480);

@@ -2,7 +2,7 @@
 //
 // Each test runs a real lab as a user would (with --validate: the Khronos layer with
 // synchronization validation and best practices, where any message fails the run):
-//  - a failure injected right after a frame is submitted (LAB_TEST_FAIL_AFTER_SUBMIT=N, a
+//  - a failure injected right after a frame is submitted (--dev-fail-after-submit N, a
 //    test-only hook read by common/lab_app.cpp) must end the run with exit code 1 and
 //    *no* validation message: the frame loop waits for the GPU before the lab's renderer
 //    (a local of the lab's body) is destroyed while the stack unwinds;
@@ -33,17 +33,16 @@ const LabExe kLabs[] = {{"lab1_camera", LAB1_EXE}, {"lab2_lighting", LAB2_EXE}};
 
 bool has_xvfb_run() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
-// Runs `lab` with `args`, with `env` (NAME=value ...) in front; stdout + stderr in the log. In a
-// window, under xvfb-run: the lab's own exit code is written to a file (xvfb-run's exit code and
-// messages about its own clean-up are not the lab's).
-RunResult run_with_env(const LabExe& lab, const std::string& env, const std::string& args, const std::string& name,
-                       bool window = false) {
+// Runs `lab` with `args`; stdout + stderr in the log. In a window, under xvfb-run: the lab's own
+// exit code is written to a file (xvfb-run's exit code and messages about its own clean-up are not
+// the lab's).
+RunResult run_case(const LabExe& lab, const std::string& args, const std::string& name, bool window = false) {
     const std::string base = kOutDir + "/" + lab.name + "_" + name;
     const std::string log = base + ".log", code_file = base + ".exit";
     fs::create_directories(kOutDir);
     std::error_code ec;
     fs::remove(code_file, ec);
-    const std::string lab_command = "env " + env + " " + quoted(lab.path) + " " + args + " > " + quoted(log) +
+    const std::string lab_command = quoted(lab.path) + " " + args + " > " + quoted(log) +
                                     " 2>&1; echo $? > " + quoted(code_file);
     const std::string command = window ? "xvfb-run -a -s '-screen 0 1280x800x24' sh -c " + quoted(lab_command) +
                                              " > " + quoted(base + ".xvfb.log") + " 2>&1"
@@ -71,11 +70,11 @@ TEST(VulkanCorrectness, FailureAfterSubmitHeadlessExitsWithCode1ValidationClean)
             std::error_code ec;
             fs::remove(png, ec);
             const RunResult run =
-                run_with_env(lab, "LAB_TEST_FAIL_AFTER_SUBMIT=" + std::to_string(n),
-                             "--headless --validate --frames 4 --width 96 --height 64 --out " + quoted(png),
-                             "fail_after_submit_" + std::to_string(n));
+                run_case(lab, "--dev-fail-after-submit " + std::to_string(n) +
+                             " --headless --validate --frames 4 --width 96 --height 64 --out " + quoted(png),
+                    "fail_after_submit_" + std::to_string(n));
             EXPECT_EQ(run.exit_code, 1) << run.log;
-            EXPECT_NE(run.log.find("LAB_TEST_FAIL_AFTER_SUBMIT"), std::string::npos) << run.log;
+            EXPECT_NE(run.log.find("--dev-fail-after-submit"), std::string::npos) << run.log;
             EXPECT_FALSE(mentions_validation(run.log)) << run.log;
             EXPECT_FALSE(fs::exists(png)) << "a failed run wrote " << png;
         }
@@ -87,28 +86,28 @@ TEST(VulkanCorrectness, FailureAfterSubmitInWindowExitsWithCode1ValidationClean)
     if (!has_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs xvfb)";
     for (const LabExe& lab : kLabs) {
         SCOPED_TRACE(lab.name);
-        const RunResult run = run_with_env(lab, "LAB_TEST_FAIL_AFTER_SUBMIT=3", "--validate --frames 30",
-                                           "fail_after_submit_window", /*window=*/true);
+        const RunResult run = run_case(lab, "--dev-fail-after-submit 3 --validate --frames 30", "fail_after_submit_window",
+                                    /*window=*/true);
         EXPECT_EQ(run.exit_code, 1) << run.log;
-        EXPECT_NE(run.log.find("LAB_TEST_FAIL_AFTER_SUBMIT"), std::string::npos) << run.log;
+        EXPECT_NE(run.log.find("--dev-fail-after-submit"), std::string::npos) << run.log;
         EXPECT_FALSE(mentions_validation(run.log)) << run.log;
     }
 }
 
 // --- --validate is strict ------------------------------------------------------------------
 
-// LAB_TEST_VALIDATION_PROBE makes the lab commit one mistake for each of the stricter checks
+// --dev-validation-probe makes the lab commit one mistake for each of the stricter checks
 // (a write-after-write hazard, a command pool with per-buffer reset): both must be reported.
 TEST(VulkanCorrectness, ValidateReportsSynchronizationHazardsAndBestPractices) {
     for (const LabExe& lab : kLabs) {
         for (bool window : {false, true}) {
             if (window && !has_xvfb_run()) continue;
             SCOPED_TRACE(std::string(lab.name) + (window ? " window" : " headless"));
-            const RunResult run = run_with_env(lab, "LAB_TEST_VALIDATION_PROBE=1",
-                                               window ? "--validate --frames 2"
-                                                      : "--validate --headless --frames 1 --width 32 --height 32 --out " +
-                                                            quoted(kOutDir + "/probe.png"),
-                                               window ? "probe_window" : "probe_headless", window);
+            const RunResult run = run_case(lab,
+                                        window ? "--dev-validation-probe --validate --frames 2"
+                                               : "--dev-validation-probe --validate --headless --frames 1 --width 32 "
+                                                 "--height 32 --out " + quoted(kOutDir + "/probe.png"),
+                                        window ? "probe_window" : "probe_headless", window);
             EXPECT_EQ(run.exit_code, 1) << run.log;
             EXPECT_NE(run.log.find("SYNC-HAZARD-WRITE-AFTER-WRITE"), std::string::npos) << run.log;
             EXPECT_NE(run.log.find("BestPractices-vkCreateCommandPool-command-buffer-reset"), std::string::npos)
@@ -155,7 +154,7 @@ TEST(VulkanCorrectness, ImageLargerThanTheDeviceAllowsExitsWithCode2) {
             std::error_code ec;
             fs::remove(png, ec);
             const std::string other = option == "--width" ? "--height 8" : "--width 8";
-            const RunResult run = run_with_env(lab, "", "--validate --out " + quoted(png) + " " + option + " " +
+            const RunResult run = run_case(lab, "--validate --out " + quoted(png) + " " + option + " " +
                                                             too_big + " " + other,
                                                "too_big" + option);
             EXPECT_EQ(run.exit_code, 2) << run.log;
@@ -177,7 +176,7 @@ TEST(VulkanCorrectness, WindowLargerThanTheDeviceAllowsExitsWithCode2) {
     const std::string too_big = std::to_string(limit + 1);
     const LabExe& lab = kLabs[0];
     const RunResult run =
-        run_with_env(lab, "", "--validate --frames 1 --height 64 --width " + too_big, "too_big_window", true);
+        run_case(lab, "--validate --frames 1 --height 64 --width " + too_big, "too_big_window", true);
     EXPECT_EQ(run.exit_code, 2) << run.log;
     EXPECT_NE(run.log.find("--width " + too_big + ": the device allows at most " + std::to_string(limit)),
               std::string::npos)
@@ -191,8 +190,8 @@ TEST(VulkanCorrectness, ImageAsWideAsTheDeviceAllowsRenders) {
     for (const LabExe& lab : kLabs) {
         SCOPED_TRACE(lab.name);
         const std::string png = kOutDir + "/" + lab.name + "_widest.png";
-        const RunResult run = run_with_env(
-            lab, "", "--validate --out " + quoted(png) + " --width " + std::to_string(limit) + " --height 2", "widest");
+        const RunResult run = run_case(
+            lab, "--validate --out " + quoted(png) + " --width " + std::to_string(limit) + " --height 2", "widest");
         EXPECT_EQ(run.exit_code, 0) << run.log;
         EXPECT_TRUE(fs::exists(png));
     }

@@ -2,8 +2,8 @@
 # window_on_demand.sh LAB_EXE CLOSE_TOOL PIXELS_TOOL — render on demand in a real window (run under
 # xvfb-run, its X server started with -r: no key auto-repeat).
 #
-# The lab runs with --validate and LAB_STATUS_FILE ("frame=N ..." after each frame drawn,
-# common/status_file.h). Checks:
+# The lab runs with --validate and --dev-status-file ("frame=N ..." after each frame drawn,
+# common/dev/status_file.h). Checks:
 #   1. an idle window stops drawing: at most 2 frames in an idle second;
 #   2. input wakes it: pointer motion draws new frames; the UI still reacts although its panels
 #      are drawn from a cache (common/imgui_renderer.h): a hovered checkbox changes, and looks as
@@ -23,7 +23,7 @@ cleanup() {
 }
 trap cleanup EXIT
 status="$dir/status.txt"
-LAB_STATUS_FILE="$status" "$exe" --validate >"$dir/out.txt" 2>&1 &
+"$exe" --validate --dev-status-file "$status" >"$dir/out.txt" 2>&1 &
 pid=$!
 
 frames() {  # frames drawn so far

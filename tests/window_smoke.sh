@@ -2,7 +2,7 @@
 # window_smoke.sh LAB_EXE [FRAMES] — the lab in a real window under xvfb-run: FRAMES frames
 # (default 30) with --validate. Judged on the lab's own exit code, written to a file by the shell
 # that ran it inside xvfb-run (xvfb-run's exit code and its messages about starting or stopping
-# the X server are not the lab's), and on its status file (LAB_STATUS_FILE, common/status_file.h):
+# the X server are not the lab's), and on its status file (--dev-status-file, common/dev/status_file.h):
 # the last line must say that frame FRAMES was drawn.
 # Pass: exit code 0 (the lab exits 1 after any validation message), no "validation" in its output,
 # FRAMES frames drawn.
@@ -14,7 +14,7 @@ dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 
 # Inside xvfb-run: the lab, then its exit code into a file.
-inner="LAB_STATUS_FILE='$dir/status' '$exe' --validate --frames $frames >'$dir/out.txt' 2>&1; echo \$? >'$dir/exit'"
+inner="'$exe' --validate --dev-status-file '$dir/status' --frames $frames >'$dir/out.txt' 2>&1; echo \$? >'$dir/exit'"
 xvfb_code=0
 xvfb-run -a -s "-screen 0 1280x800x24" sh -c "$inner" >"$dir/xvfb.txt" 2>&1 || xvfb_code=$?
 

@@ -25,6 +25,10 @@ struct Frame {
 // Commands a lab records before the target's render pass begins (lab 4: the shadow passes render
 // into their own images first). Called with the frame's command buffer begun; may be empty.
 using BeforePass = std::function<void(const Frame&)>;
+// Commands recorded after the render pass, with the frame's image in TRANSFER_DST_OPTIMAL layout
+// (the UI copies its opaque panels there, imgui_renderer.h). Only targets whose images accept
+// copies call it (a window whose surface allows TRANSFER_DST usage).
+using AfterPass = std::function<void(VkCommandBuffer cmd, VkImage image)>;
 
 class RenderTarget {
 public:
@@ -37,7 +41,11 @@ public:
     // no frame can be drawn right now (minimized window, swapchain recreated).
     // `before_pass` (if set) records its commands before the render pass begins.
     virtual bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) = 0;
-    virtual void end_frame() = 0;
+    // Ends the pass, records `after_pass` (if set and the target takes copies), submits (and presents).
+    virtual void end_frame(const AfterPass& after_pass = {}) = 0;
+    // Blocks until the frame before the last one begun has finished on the GPU (two frames are in
+    // flight): what a benchmark times, frame by frame.
+    virtual void wait_for_previous_frame() const = 0;
 };
 
 // The pieces both targets share: one render pass layout and per-slot command buffers + fences.

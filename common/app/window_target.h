@@ -76,19 +76,14 @@ public:
     VkExtent2D extent() const override { return extent_; }
     VkFormat color_format() const { return surface_format_.format; }
     bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) override;
-    void end_frame() override { end_frame(AfterPass{}); }
+    void end_frame(const AfterPass& after_pass = {}) override;
+    // The slot the next frame will use was the previous frame's: wait for it there.
+    void wait_for_previous_frame() const override { slots_.wait(slot_); }
 
-    // Commands recorded after the render pass, with the frame's swapchain image in
-    // TRANSFER_DST_OPTIMAL layout (the UI copies its opaque panels there, imgui_renderer.h).
-    using AfterPass = std::function<void(VkCommandBuffer cmd, VkImage image)>;
     // Whether the swapchain images accept transfers (the surface allows TRANSFER_DST usage); if
     // not, `after_pass` is not called.
     bool accepts_copies() const { return accepts_copies_; }
-    void end_frame(const AfterPass& after_pass);
     uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
-    // Blocks until the last frame drawn in frame slot `slot` (Frame::slot) has finished: window
-    // benchmarks time frames the way headless ones do.
-    void wait_for_slot(uint32_t slot) const { slots_.wait(slot); }
 
 private:
     bool create_swapchain();  // false (and nothing changed) while the surface is 0×0

@@ -1,9 +1,13 @@
-// lab_app.h — the frame loop every lab shares: window or headless, UI, timing, benchmark, PNG.
+// lab_app.h — the frame loop every lab shares: window or headless, input, UI, PNG.
 //
 // A lab's main() is:
 //     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
 //         ... create the lab's renderer ...
-//         app.run({update, ui, record, background});
+//         lab::LabApp::Callbacks frame;
+//         frame.update = [&](float dt) { ... };
+//         frame.record = [&](const lab::Frame& f) { ... };
+//         ...
+//         app.run(frame);
 //     });
 // run_lab() turns every failure into one line on stderr and an exit code:
 // 0 success, 1 Vulkan/system failure or validation messages, 2 bad input.
@@ -13,25 +17,25 @@
 #include "imgui_layer.h"
 #include "render_target.h"
 #include "scene.h"
-#include "status_file.h"
 #include "vk_context.h"
 
-#include <array>
 #include <chrono>
-#include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
-#include <vector>
 
 namespace lab {
 
+namespace dev {
+class Instruments;  // benchmark, status file, test hooks: the dev layer, behind the loop
+}
 class Window;
 class HeadlessTarget;
 
 struct LabInfo {
     std::string name;           // "lab1_camera": window title, default PNG name
     std::string default_scene;  // absolute path of the lab's scene in scenes/
+    std::string shader_dir;     // absolute path of the lab's compiled shaders (build/shaders/<lab>)
 };
 
 // What the mouse did since the last frame (zero while the pointer is over a UI panel).
@@ -43,12 +47,13 @@ struct MouseInput {
 
 class LabApp {
 public:
+    // What the lab does each frame, in this order.
     struct Callbacks {
-        std::function<void(float dt_seconds)> update;          // input and animation
-        std::function<void()> ui;  // ImGui panels (window mode only), before anything of the frame is recorded
-        std::function<void(const Frame&)> record;              // draw commands inside the render pass
-        std::function<glm::vec3()> background;                 // clear colour (linear RGB)
-        BeforePass before_pass;  // optional: commands before the render pass (lab 4's shadow maps)
+        std::function<void(float dt_seconds)> update;  // input and animation
+        std::function<void()> ui;                      // ImGui panels (window only), before anything is recorded
+        std::function<glm::vec3()> background;         // clear colour (linear RGB)
+        BeforePass before_pass;                        // optional: commands before the pass (lab 4's shadow maps)
+        std::function<void(const Frame&)> record;      // draw commands inside the render pass
     };
 
     LabApp(const LabInfo& info, const Options& options, int* validation_messages);
@@ -58,6 +63,8 @@ public:
     const VulkanContext& vk() const { return *vk_; }
     RenderTarget& target() { return *target_; }
     bool has_window() const { return window_ != nullptr; }
+    // The lab's compiled shaders (--dev-shader-dir replaces the folder built in).
+    const std::string& shader_dir() const { return shader_dir_; }
 
     // Keyboard (false when headless or while an ImGui text field has focus).
     bool key_down(int glfw_key) const;
@@ -79,21 +86,21 @@ public:
     void run(const Callbacks& callbacks);
 
 private:
-    void poll_input();
     void run_window(const Callbacks& callbacks);
     void run_headless(const Callbacks& callbacks);
     bool draw_window_frame(const Callbacks& callbacks, float ui_dt);  // false: no image this time
-    void print_benchmark(const char* mode, const std::vector<double>& frame_ms) const;
-    void frame_submitted();  // counts submits; the test hook throws after the Nth
+    void poll_input();
+    void show_frame_time(std::chrono::steady_clock::time_point woke);
 
     LabInfo info_;
     Options options_;
+    std::string shader_dir_;
     std::unique_ptr<Window> window_;
     std::unique_ptr<VulkanContext> vk_;
     std::unique_ptr<RenderTarget> target_;
-    HeadlessTarget* headless_ = nullptr;  // == target_ when headless
+    HeadlessTarget* headless_ = nullptr;  // == target_ when headless (it reads the picture back)
     std::unique_ptr<ImGuiLayer> ui_;
-    std::unique_ptr<StatusFile> status_;  // LAB_STATUS_FILE: a line per frame for bench/soak.sh
+    std::unique_ptr<dev::Instruments> dev_;
     MouseInput mouse_;
     glm::dvec2 last_cursor_{0.0};
     bool have_cursor_ = false;
@@ -102,11 +109,6 @@ private:
     std::chrono::steady_clock::time_point shown_at_{};
     bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
     bool redraw_requested_ = false;
-    uint32_t last_slot_ = 0;             // frame slot of the last window frame drawn
-    std::array<double, 4> phase_ms_{};   // window frames: acquire, UI, record, submit+present (ms)
-    uint64_t ui_redraws_at_warmup_ = 0;  // ImGuiLayer::redraw_count() when the benchmark's timing began
-    int fail_after_submit_ = 0;  // test hook LAB_TEST_FAIL_AFTER_SUBMIT=N (0: off)
-    int submitted_ = 0;          // frames submitted so far
 };
 
 int run_lab(int argc, char** argv, const LabInfo& info,

@@ -23,17 +23,19 @@ constexpr long long kMaxImageSide = 65536;
 
 std::string lower(const std::string& s) { return to_lower(s); }
 
-struct OptionSpec {
-    const char* name;  // without the leading "--"
-    bool takes_value;
-};
+using OptionSpec = DevOptionSpec;
 
+// The students' options, then the developer ones (dev_options.h).
 const std::vector<OptionSpec>& option_specs() {
-    static const std::vector<OptionSpec> specs = {
-        {"scene", true},  {"headless", false}, {"out", true},       {"width", true},
-        {"height", true}, {"frames", true},    {"validate", false}, {"benchmark", true},
-        {"window", false},  {"help", false},
-    };
+    static const std::vector<OptionSpec> specs = [] {
+        std::vector<OptionSpec> all = {
+            {"scene", true},  {"headless", false}, {"out", true},       {"width", true},
+            {"height", true}, {"frames", true},    {"validate", false}, {"benchmark", true},
+            {"window", false}, {"help", false},    {"help-dev", false},
+        };
+        all.insert(all.end(), dev_option_specs().begin(), dev_option_specs().end());
+        return all;
+    }();
     return specs;
 }
 
@@ -42,11 +44,13 @@ std::string did_you_mean(const std::string& name) {
     std::vector<std::string> names;
     for (const auto& spec : option_specs()) names.push_back(spec.name);
     const std::string best = closest_match(name, names, 2);  // at most 2 letters off
-    return best.empty() ? " (see --help)" : " (did you mean --" + best + "?)";
+    const char* help = name.rfind("dev-", 0) == 0 ? " (see --help-dev)" : " (see --help)";
+    return best.empty() ? help : " (did you mean --" + best + "?)";
 }
 
-// A whole number in [lo, hi]; "12abc", "1.5", "" and overflow are errors.
-long long parse_integer(const std::string& option, const std::string& text, long long lo, long long hi) {
+}  // namespace
+
+long long parse_whole_number(const std::string& option, const std::string& text, long long lo, long long hi) {
     size_t i = (!text.empty() && (text[0] == '-' || text[0] == '+')) ? 1 : 0;
     const bool digits = i < text.size() &&
                         std::all_of(text.begin() + static_cast<long>(i), text.end(),
@@ -60,19 +64,17 @@ long long parse_integer(const std::string& option, const std::string& text, long
     return v;
 }
 
-}  // namespace
-
 Options parse_command_line(int argc, const char* const* argv, const std::string& default_scene) {
     Options o;
     o.scene = default_scene;
     std::vector<std::string> args(argv + std::min(argc, 1), argv + std::max(argc, 0));
 
     // --help wins over everything else, even over mistakes elsewhere on the line.
-    for (const auto& a : args)
-        if (a == "--help" || a == "-h") {
-            o.help = true;
-            return o;
-        }
+    for (const auto& a : args) {
+        if (a == "--help" || a == "-h") o.help = true;
+        if (a == "--help-dev") o.help_dev = true;
+        if (o.help || o.help_dev) return o;
+    }
 
     bool headless_asked = false;
     for (size_t i = 0; i < args.size(); ++i) {
@@ -117,17 +119,19 @@ Options parse_command_line(int argc, const char* const* argv, const std::string&
             o.out = value;
             o.headless = true;  // a PNG comes from a headless render
         } else if (name == "width") {
-            o.width = static_cast<uint32_t>(parse_integer(option, value, 1, kMaxImageSide));
+            o.width = static_cast<uint32_t>(parse_whole_number(option, value, 1, kMaxImageSide));
         } else if (name == "height") {
-            o.height = static_cast<uint32_t>(parse_integer(option, value, 1, kMaxImageSide));
+            o.height = static_cast<uint32_t>(parse_whole_number(option, value, 1, kMaxImageSide));
         } else if (name == "frames") {
-            o.frames = static_cast<int>(parse_integer(option, value, 1, INT_MAX));
+            o.frames = static_cast<int>(parse_whole_number(option, value, 1, INT_MAX));
         } else if (name == "validate") {
             o.validate = true;
         } else if (name == "benchmark") {
-            o.benchmark = static_cast<int>(parse_integer(option, value, 1, INT_MAX));
+            o.benchmark = static_cast<int>(parse_whole_number(option, value, 1, INT_MAX));
         } else if (name == "window") {
             o.window = true;
+        } else {
+            set_dev_option(o.dev, name, value);
         }
     }
     // A benchmark is headless (rendering alone) unless --window asks for the whole window path.

@@ -31,7 +31,7 @@ bool HeadlessTarget::begin_frame(const glm::vec3& clear_linear, Frame& frame, co
     return true;
 }
 
-void HeadlessTarget::end_frame() {
+void HeadlessTarget::end_frame(const AfterPass&) {
     VkCommandBuffer cmd = slots_.command_buffer(slot_);
     vkCmdEndRenderPass(cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
@@ -41,6 +41,9 @@ void HeadlessTarget::end_frame() {
     VK_CHECK(vkQueueSubmit(vk_.queue(), 1, &submit, slots_.fence(slot_)));
     slot_ = (slot_ + 1) % kFramesInFlight;
 }
+
+// After end_frame() the next slot is the previous frame's (two in flight).
+void HeadlessTarget::wait_for_previous_frame() const { slots_.wait(slot_); }
 
 void HeadlessTarget::wait_for_frame(uint64_t frame_number) const {
     // Frame n used slot n % kFramesInFlight; its fence is reused only by frame n + kFramesInFlight.

@@ -83,7 +83,8 @@ bool has_layer(const char* name) {
 }
 }  // namespace
 
-VulkanContext::VulkanContext(const ContextOptions& options) : external_count_(options.message_count) {
+VulkanContext::VulkanContext(const ContextOptions& options)
+    : no_blit_(options.no_blit), external_count_(options.message_count) {
     try {
         create_instance(options);
         if (options.window) {
@@ -92,7 +93,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : external_count_(op
         }
         pick_physical_device();
         create_device();
-        if (options.validate && std::getenv("LAB_TEST_VALIDATION_PROBE")) provoke_validation_messages();
+        if (options.validate && options.validation_probe) provoke_validation_messages();
     } catch (...) {
         release();  // destroy what was created, then rethrow
         throw;
@@ -304,7 +305,7 @@ void VulkanContext::create_device() {
     VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &upload_fence_));
 }
 
-// Test-only (LAB_TEST_VALIDATION_PROBE): one mistake each check of --validate must report, so a
+// Test-only (--dev-validation-probe): one mistake each check of --validate must report, so a
 // test can see that synchronization validation and best practices are really on.
 void VulkanContext::provoke_validation_messages() {
     // Best practices: a command pool whose buffers are reset one by one.
@@ -331,6 +332,17 @@ void VulkanContext::provoke_validation_messages() {
         vkCmdFillBuffer(cmd, buffer, 0, 256, 0u);
         vkCmdFillBuffer(cmd, buffer, 0, 256, 1u);  // write-after-write hazard
     });
+}
+
+VkFormatProperties VulkanContext::format_properties(VkFormat format) const {
+    VkFormatProperties properties;
+    vkGetPhysicalDeviceFormatProperties(physical_, format, &properties);
+    if (no_blit_) {  // a device without blits: the fallback paths run
+        const VkFormatFeatureFlags blit = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT;
+        properties.linearTilingFeatures &= ~blit;
+        properties.optimalTilingFeatures &= ~blit;
+    }
+    return properties;
 }
 
 uint32_t VulkanContext::find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags wanted) const {

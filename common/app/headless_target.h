@@ -16,7 +16,8 @@ public:
     VkRenderPass render_pass() const override { return render_pass_; }
     VkExtent2D extent() const override { return extent_; }
     bool begin_frame(const glm::vec3& clear_linear, Frame& frame, const BeforePass& before_pass = {}) override;
-    void end_frame() override;
+    void end_frame(const AfterPass& after_pass = {}) override;  // `after_pass` is not called
+    void wait_for_previous_frame() const override;
 
     // Blocks until frame number `frame_number` (counting begin_frame calls from 0) has finished.
     void wait_for_frame(uint64_t frame_number) const;

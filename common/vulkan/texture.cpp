@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -28,8 +27,7 @@ VkFormat format_of(TexelEncoding encoding) {
 }
 
 bool can_blit_linear(const VulkanContext& vk, VkFormat format) {
-    VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(vk.physical_device(), format, &fp);
+    const VkFormatProperties fp = vk.format_properties(format);
     const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
                                         VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     return (fp.optimalTilingFeatures & needed) == needed;
@@ -91,8 +89,6 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
     t.height = uint32_t(pixels.height);
     t.levels = mipmaps ? mip_level_count(t.width, t.height) : 1;
     const VkFormat format = format_of(encoding);
-    const char* forced = std::getenv("LAB_MIPMAPS");
-    if (forced && std::string(forced) == "cpu") source = MipSource::Cpu;
     // Blits only when each level is exactly the 2×2 box of the one above: both sides even (or 1)
     // at every step. Otherwise (wood.png, 100×60: 25×15 → 12×7 is a 2.08-texel box) the CPU box.
     bool exact = true;

@@ -1,6 +1,5 @@
 #include "shader.h"
 
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -9,10 +8,9 @@
 namespace lab {
 
 Handle<VkShaderModule> load_shader(const VulkanContext& vk, const std::string& compiled_dir, const std::string& name) {
-    const char* override_dir = std::getenv("LAB_SHADER_DIR");
-    const std::string path = (override_dir && *override_dir ? std::string(override_dir) : compiled_dir) + "/" + name + ".spv";
+    const std::string path = compiled_dir + "/" + name + ".spv";
     std::ifstream file(path, std::ios::binary);
-    if (!file) throw VulkanError(path + ": cannot open compiled shader (rebuild the lab, or check LAB_SHADER_DIR)");
+    if (!file) throw VulkanError(path + ": cannot open compiled shader (rebuild the lab)");
     std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     if (bytes.empty() || bytes.size() % 4 != 0) throw VulkanError(path + ": not a SPIR-V file (size is not a multiple of 4)");
 

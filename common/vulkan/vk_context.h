@@ -25,6 +25,9 @@ struct ContextOptions {
     bool validate = false;          // Khronos validation layer + debug messenger
     GLFWwindow* window = nullptr;   // present to this window (nullptr: headless)
     int* message_count = nullptr;   // optional: also counts validation messages here (outlives the context)
+    // Test hooks (--dev-validation-probe, --dev-no-blit: app/dev_options.h).
+    bool validation_probe = false;  // with `validate`: commit one mistake per check the layer must report
+    bool no_blit = false;           // format_properties() reports no format as a blit source or target
 };
 
 class VulkanContext {
@@ -48,6 +51,8 @@ public:
     // Device memory for buffers and images: ranges of a few large blocks (memory.h).
     MemoryAllocator& allocator() const { return *allocator_; }
     VkFormat depth_format() const { return depth_format_; }
+    // vkGetPhysicalDeviceFormatProperties, less the blit features under ContextOptions::no_blit.
+    VkFormatProperties format_properties(VkFormat format) const;
 
     // Records commands into the context's upload command buffer, submits and waits.
     // For uploads and readbacks — never inside the frame loop. The one command buffer is
@@ -68,7 +73,7 @@ private:
     void create_instance(const ContextOptions& options);
     void pick_physical_device();
     void create_device();
-    void provoke_validation_messages();  // test hook LAB_TEST_VALIDATION_PROBE
+    void provoke_validation_messages();  // test hook ContextOptions::validation_probe
     void release();
 
     VkInstance instance_ = VK_NULL_HANDLE;
@@ -87,6 +92,7 @@ private:
     VkPhysicalDeviceFeatures enabled_features_{};
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     bool presenting_ = false;
+    bool no_blit_ = false;
     int validation_messages_ = 0;
     int* external_count_ = nullptr;
 };

@@ -44,9 +44,9 @@ Image8 downsample(const Image8& image, TexelEncoding encoding);
 // True when a linear blit makes exactly that level from `width` × `height`: each side even, or 1.
 bool blit_halves_exactly(uint32_t width, uint32_t height);
 
-// Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain. The
-// environment variable LAB_MIPMAPS=cpu forces the CPU fallback (so tests can run that path on a
-// device that has linear blits).
+// Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain: blits where
+// the device has linear blits for the format, else the CPU fallback (`--dev-no-blit` makes a
+// device without them, so tests run that path on any device).
 Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto,
                        TexelEncoding encoding = TexelEncoding::Srgb);
 

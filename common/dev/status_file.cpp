@@ -1,15 +1,8 @@
 #include "status_file.h"
 
 #include <cstdio>
-#include <cstdlib>
 
-namespace lab {
-
-std::unique_ptr<StatusFile> StatusFile::from_environment() {
-    const char* path = std::getenv("LAB_STATUS_FILE");
-    if (!path || !*path) return nullptr;
-    return std::make_unique<StatusFile>(path);
-}
+namespace lab::dev {
 
 StatusFile::StatusFile(std::string path) : path_(std::move(path)) {}
 
@@ -32,4 +25,4 @@ void StatusFile::write(bool idle) const {
     }
 }
 
-}  // namespace lab
+}  // namespace lab::dev

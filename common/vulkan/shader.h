@@ -1,8 +1,7 @@
 // shader.h — load a compiled SPIR-V shader from the lab's shader folder.
 //
 // Shaders are compiled by CMake at build time into build/shaders/<lab>/; the
-// folder is compiled into the binary (LAB_SHADER_DIR) and may be overridden
-// with the environment variable LAB_SHADER_DIR.
+// folder is compiled into the binary (LAB_SHADER_DIR, LabApp::shader_dir()).
 #pragma once
 
 #include "vk_context.h"
@@ -11,7 +10,7 @@
 
 namespace lab {
 
-// `compiled_dir` is the lab's LAB_SHADER_DIR; `name` e.g. "unlit.vert".
+// `compiled_dir` is the lab's shader folder (LabApp::shader_dir()); `name` e.g. "unlit.vert".
 Handle<VkShaderModule> load_shader(const VulkanContext& vk, const std::string& compiled_dir, const std::string& name);
 
 // A module from SPIR-V already in memory (common's own shaders, compiled into the program).

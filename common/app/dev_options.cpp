@@ -1,0 +1,57 @@
+#include "dev_options.h"
+
+#include "cli.h"
+
+namespace lab {
+
+const std::vector<DevOptionSpec>& dev_option_specs() {
+    static const std::vector<DevOptionSpec> specs = {
+        {"dev-status-file", true}, {"dev-fail-after-submit", true}, {"dev-validation-probe", false},
+        {"dev-no-blit", false},    {"dev-shader-dir", true},        {"dev-scene-dir", true},
+        {"dev-animate-lights", false}, {"dev-shadow-view", true},
+    };
+    return specs;
+}
+
+void set_dev_option(DevOptions& dev, const std::string& name, const std::string& value) {
+    const std::string option = "--" + name;
+    if (name == "dev-status-file") {
+        dev.status_file = value;
+    } else if (name == "dev-fail-after-submit") {
+        dev.fail_after_submit = int(parse_whole_number(option, value, 1, 1000000));
+    } else if (name == "dev-validation-probe") {
+        dev.validation_probe = true;
+    } else if (name == "dev-no-blit") {
+        dev.no_blit = true;
+    } else if (name == "dev-shader-dir") {
+        dev.shader_dir = value;
+    } else if (name == "dev-scene-dir") {
+        dev.scene_dir = value;
+    } else if (name == "dev-animate-lights") {
+        dev.animate_lights = true;
+    } else if (name == "dev-shadow-view") {
+        dev.shadow_view = int(parse_whole_number(option, value, 0, 1000));
+    }
+}
+
+std::string dev_usage(const std::string& program) {
+    return "usage: " + program + " [options] [developer options]\n"
+           "\n"
+           "developer options, for tests and measurements (--help lists the others):\n"
+           "  --dev-status-file PATH     in a window, rewrite PATH after every frame with\n"
+           "                             \"frame=N width=W height=H\" (\" idle\" appended once idle)\n"
+           "  --dev-fail-after-submit N  throw right after the Nth frame is submitted, as a lost\n"
+           "                             device would (the run must still end validation-clean)\n"
+           "  --dev-validation-probe     with --validate: commit one mistake for each validation\n"
+           "                             check, to prove the checks are on\n"
+           "  --dev-no-blit              act as a device without image blits: mip chains come\n"
+           "                             from the CPU fallback\n"
+           "  --dev-shader-dir DIR       load the compiled shaders from DIR (the exercises' grader)\n"
+           "  --dev-scene-dir DIR        look for the lab's default scene in DIR\n"
+           "  --dev-animate-lights       lab 4: the lights circle the Y axis (every shadow map is\n"
+           "                             re-rendered every frame: what --benchmark times)\n"
+           "  --dev-shadow-view N        lab 4: show light N's shadow map (headless pictures)\n"
+           "  --help-dev                 show this help and exit\n";
+}
+
+}  // namespace lab

@@ -1,0 +1,315 @@
+#include "lab_app.h"
+
+#include "headless_target.h"
+#include "redraw_policy.h"
+#include "window_target.h"
+
+#include "instruments.h"      // dev layer: benchmark, status file, test hooks
+#include "process_memory.h"   // dev layer: glibc heap settings
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <utility>
+
+namespace lab {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The device's largest image side for a colour attachment. The command line allows up to 65536;
+// a larger image than the device can make is bad input like any other (one line, exit code 2).
+void check_image_size(const VulkanContext& vk, const Options& options) {
+    const VkPhysicalDeviceLimits& limits = vk.properties().limits;
+    const uint32_t max_width = std::min(limits.maxImageDimension2D, limits.maxFramebufferWidth);
+    const uint32_t max_height = std::min(limits.maxImageDimension2D, limits.maxFramebufferHeight);
+    const auto check = [&](const char* option, uint32_t value, uint32_t allowed) {
+        if (value > allowed)
+            throw CliError(std::string(option) + " " + std::to_string(value) + ": the device allows at most " +
+                           std::to_string(allowed) + " (" + vk.properties().deviceName + ")");
+    };
+    check("--width", options.width, max_width);
+    check("--height", options.height, max_height);
+}
+}  // namespace
+
+LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_messages)
+    : info_(info),
+      options_(options),
+      shader_dir_(options.dev.shader_dir.empty() ? info.shader_dir : options.dev.shader_dir) {
+    ContextOptions context;
+    context.validate = options.validate;
+    context.message_count = validation_messages;
+    context.validation_probe = options.dev.validation_probe;
+    context.no_blit = options.dev.no_blit;
+    if (!options.headless) {
+        window_ = std::make_unique<Window>(info.name, options.width, options.height);
+        context.window = window_->handle();
+    }
+    vk_ = std::make_unique<VulkanContext>(context);
+    check_image_size(*vk_, options);
+    if (window_) {
+        window_->show();  // created hidden: bad input never flashes a window
+        auto target = std::make_unique<WindowTarget>(*vk_, *window_);
+        ui_ = std::make_unique<ImGuiLayer>(*vk_, window_->handle(), target->render_pass(), target->color_format(),
+                                           target->accepts_copies());
+        target_ = std::move(target);
+    } else {
+        auto target = std::make_unique<HeadlessTarget>(*vk_, VkExtent2D{options.width, options.height});
+        headless_ = target.get();
+        target_ = std::move(target);
+    }
+    dev::InstrumentSettings instruments;
+    instruments.lab = info.name;
+    instruments.benchmark_frames = options.benchmark;
+    instruments.status_file = window_ ? options.dev.status_file : "";
+    instruments.fail_after_submit = options.dev.fail_after_submit;
+    dev_ = std::make_unique<dev::Instruments>(instruments);
+}
+
+LabApp::~LabApp() {
+    if (vk_) vkDeviceWaitIdle(vk_->device());
+    ui_.reset();
+    target_.reset();
+    vk_.reset();
+    window_.reset();
+}
+
+void LabApp::wait_idle() const { VK_CHECK(vkDeviceWaitIdle(vk_->device())); }
+
+bool LabApp::key_down(int glfw_key) const {
+    if (!window_ || (ui_ && ui_->wants_keyboard())) return false;
+    return glfwGetKey(window_->handle(), glfw_key) == GLFW_PRESS;
+}
+
+bool LabApp::key_pressed(int glfw_key) {
+    // From the key events, not the key's state: a tap whose press and release arrive between two
+    // frames, or a second tap before a frame saw the first one's release, still counts.
+    if (!window_) return false;
+    const bool pressed = window_->take_key_press(glfw_key);
+    return pressed && !(ui_ && ui_->wants_keyboard());  // typed into a UI field: not a command
+}
+
+void LabApp::poll_input() {
+    // The cursor as the window's callbacks left it: asking GLFW (glfwGetCursorPos) would be a
+    // round trip to the X server every frame.
+    const glm::dvec2 cursor = window_->input().cursor;
+    const bool ui_has_mouse = ui_ && ui_->wants_mouse();
+    mouse_.delta = have_cursor_ && !ui_has_mouse ? glm::vec2(cursor - last_cursor_) : glm::vec2(0.0f);
+    mouse_.left_down = !ui_has_mouse && window_->input().mouse_down[GLFW_MOUSE_BUTTON_LEFT];
+    const float scroll = window_->take_scroll();
+    mouse_.scroll = ui_has_mouse ? 0.0f : scroll;
+    last_cursor_ = cursor;
+    have_cursor_ = true;
+}
+
+void LabApp::run(const Callbacks& callbacks) {
+    // The lab's renderer is a local of its body, destroyed as soon as run() is left. Whichever
+    // way run() is left (the last frame, or an exception after a submit: a lost surface or
+    // device, a failed pipeline), the GPU must be done with every submitted frame first, or
+    // unwinding destroys pipelines, buffers and memory the GPU is still using.
+    try {
+        if (window_)
+            run_window(callbacks);
+        else
+            run_headless(callbacks);
+    } catch (...) {
+        // The original error is the one to report; a failing wait here (a lost device) has
+        // nothing left to wait for.
+        vkDeviceWaitIdle(vk_->device());
+        throw;
+    }
+}
+
+void LabApp::run_window(const Callbacks& cb) {
+    // --frames and --benchmark draw every frame and stop after a count. Otherwise the window
+    // draws on demand (redraw_policy.h) and sleeps while nothing changes.
+    const bool measured = options_.frames > 0 || dev_->benchmarking();
+    const int to_draw = dev_->benchmarking() ? dev_->benchmark_frames() : options_.frames;
+    RedrawPolicy policy;
+    const auto start = Clock::now();
+    auto last_update = start, last_ui = start;
+    int drawn = 0, drawn_when_idle = 0;
+    while (!window_->should_close()) {
+        // 1. Events: wait for one when there is nothing to draw, else just take what came.
+        const bool sleep = !measured && !continuous_rendering_ && policy.may_sleep();
+        if (sleep && drawn > drawn_when_idle) {  // going idle after drawing: finish, give memory back
+            wait_idle();
+            dev_->window_went_idle();
+            drawn_when_idle = drawn;
+        }
+        if (sleep)
+            window_->wait_events(RedrawPolicy::kWakeSeconds);
+        else
+            glfwPollEvents();
+        const auto woke = Clock::now();
+        poll_input();
+
+        // 2. Update. Held keys move by real time; after a sleep nothing was held (or we would not
+        // have slept), so the time asleep is not movement time.
+        if (sleep) last_update = woke;
+        cb.update(std::chrono::duration<float>(woke - last_update).count());
+        last_update = woke;
+
+        // 3. Draw, if anything changed: UI, record, submit, present.
+        RedrawPolicy::Inputs in;
+        in.event_count = window_->event_count();
+        in.input_held = window_->input_held();
+        in.requested = std::exchange(redraw_requested_, false) || (ui_->wants_text_input() && sleep);
+        in.continuous = measured || continuous_rendering_;
+        if (!policy.should_draw(in)) continue;
+        if (!draw_window_frame(cb, std::chrono::duration<float>(woke - last_ui).count())) continue;
+        last_ui = woke;
+        show_frame_time(woke);
+        if (dev_->benchmarking() && drawn > 0) {  // the frame before this one is done: time it
+            target_->wait_for_previous_frame();
+            dev_->frame_finished(drawn - 1, ui_->redraw_count());
+        }
+        ++drawn;
+        if (measured && drawn >= to_draw) break;  // --frames N: screenshots, tests
+    }
+    wait_idle();
+    if (dev_->benchmarking() && dev_->report(target_->extent().width, target_->extent().height, true, ui_->redraw_count()))
+        return;
+    const double seconds = seconds_since(start);
+    std::printf("%s: %d frames in %.1f s (%.1f ms/frame average)\n", info_.name.c_str(), drawn, seconds,
+                drawn ? 1000.0 * seconds / drawn : 0.0);
+}
+
+// The frame's cost from waking up to presenting (not the time asleep before it), for the panel.
+void LabApp::show_frame_time(Clock::time_point woke) {
+    const float work_ms = float(1000.0 * seconds_since(woke));
+    average_frame_ms_ = average_frame_ms_ == 0.0f ? work_ms : 0.95f * average_frame_ms_ + 0.05f * work_ms;
+    if (shown_frame_ms_ == 0.0f || woke - shown_at_ >= std::chrono::milliseconds(500)) {
+        shown_frame_ms_ = average_frame_ms_;
+        shown_at_ = woke;
+    }
+}
+
+bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
+    // The UI is built first: nothing of the frame is recorded yet, so a panel may replace what
+    // the lab draws with (a new renderer). Then the lab's own commands outside the pass (lab 4's
+    // shadow maps), then the overlay, redrawn if the UI changed; its translucent edges are blended
+    // over the lab's picture inside the pass, its opaque panels copied in after it (imgui_renderer.h).
+    dev::FramePhases& phases = dev_->phases();  // where the time goes, for --benchmark --window
+    phases.start();
+    const BeforePass before_pass = [&](const Frame& begun) {
+        phases.lap(dev::FramePhases::Acquire);
+        ui_->new_frame(*window_, ui_dt);
+        cb.ui();
+        phases.lap(dev::FramePhases::Ui);
+        if (cb.before_pass) cb.before_pass(begun);
+        phases.lap(dev::FramePhases::Record);
+        ui_->prepare(begun.cmd, begun.slot, begun.extent);
+        phases.lap(dev::FramePhases::Ui);
+    };
+    Frame frame;
+    if (!target_->begin_frame(cb.background(), frame, before_pass)) return false;
+    cb.record(frame);
+    phases.lap(dev::FramePhases::Record);
+    ui_->render(frame.cmd);
+    phases.lap(dev::FramePhases::Ui);
+    target_->end_frame([&](VkCommandBuffer cmd, VkImage image) { ui_->render_after_pass(cmd, image); });
+    phases.lap(dev::FramePhases::SubmitPresent);
+    dev_->frame_submitted();
+    dev_->window_frame_drawn(frame.extent.width, frame.extent.height);
+    return true;
+}
+
+void LabApp::frame_stats_ui() {
+    const bool continuous = continuous_rendering_ || options_.frames > 0 || options_.benchmark > 0;
+    if (continuous)
+        ImGui::Text("%.2f ms/frame (%.0f fps)", shown_frame_ms_, 1000.0 / std::max(shown_frame_ms_, 1e-3f));
+    else
+        ImGui::Text("%.2f ms/frame, drawn on demand", shown_frame_ms_);
+    ImGui::Checkbox("continuous rendering", &continuous_rendering_);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Draw frames all the time, not only when something changes\n(uses a CPU core while idle)");
+}
+
+void LabApp::run_headless(const Callbacks& cb) {
+    // Headless time advances at a fixed rate, so the output is deterministic.
+    const int frames = dev_->benchmarking() ? dev_->benchmark_frames() : std::max(1, options_.frames);
+    const auto start = Clock::now();
+    for (int i = 0; i < frames; ++i) {
+        cb.update(1.0f / 60.0f);
+        Frame frame;
+        target_->begin_frame(cb.background(), frame, cb.before_pass);
+        cb.record(frame);
+        target_->end_frame();
+        dev_->frame_submitted();
+        if (dev_->benchmarking() && i > 0) {  // the frame before this one is done: time it
+            target_->wait_for_previous_frame();
+            dev_->frame_finished(i - 1, 0);
+        }
+    }
+    wait_idle();
+    if (dev_->benchmarking()) {
+        dev_->report(options_.width, options_.height, false, 0);
+        if (options_.out.empty()) return;
+    } else {
+        std::printf("%s: rendered %d frame%s at %ux%u in %.1f ms\n", info_.name.c_str(), frames, frames == 1 ? "" : "s",
+                    options_.width, options_.height, 1000.0 * seconds_since(start));
+    }
+    const std::string out = options_.out.empty() ? info_.name + ".png" : options_.out;
+    write_png(out, headless_->read_pixels());
+    std::printf("%s: wrote %s\n", info_.name.c_str(), std::filesystem::absolute(out).string().c_str());
+    std::fflush(stdout);
+}
+
+int run_lab(int argc, char** argv, const LabInfo& info,
+            const std::function<void(LabApp& app, const Scene& scene)>& body) {
+    const std::string name = info.name;
+    int validation_messages = 0;
+    dev::keep_big_blocks_out_of_the_heap();
+    try {
+        Options options = parse_command_line(argc, argv, info.default_scene);
+        if (options.help || options.help_dev) {
+            std::printf("%s", options.help ? usage(name).c_str() : dev_usage(name).c_str());
+            return 0;
+        }
+        if (!options.dev.scene_dir.empty() && options.scene == info.default_scene)  // the scene folder moved
+            options.scene = options.dev.scene_dir + "/" + std::filesystem::path(info.default_scene).filename().string();
+        if (!options.out.empty()) {  // fail before rendering, not after
+            const std::filesystem::path folder = std::filesystem::absolute(options.out).parent_path();
+            if (!std::filesystem::is_directory(folder))
+                throw CliError("--out " + options.out + ": folder " + folder.string() + " does not exist");
+        }
+        const Scene scene = load_scene(options.scene);
+        {
+            LabApp app(info, options, &validation_messages);
+            body(app, scene);
+        }  // everything Vulkan is destroyed here, so leaks are reported before we count
+        if (validation_messages > 0) {
+            std::fprintf(stderr, "%s: error: %d validation message%s (see above)\n", name.c_str(), validation_messages,
+                         validation_messages == 1 ? "" : "s");
+            return 1;
+        }
+        return 0;
+    } catch (const CliError& e) {
+        const std::string message = e.what();
+        const bool has_hint = message.find("--help") != std::string::npos || message.find("did you mean") != std::string::npos;
+        std::fprintf(stderr, "%s: error: %s%s\n", name.c_str(), message.c_str(), has_hint ? "" : " (try --help)");
+        return 2;
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 2;
+    } catch (const VulkanError& e) {
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 1;
+    } catch (const std::runtime_error& e) {  // bad input found while loading (meshes, images)
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+        return 1;
+    }
+}
+
+}  // namespace lab

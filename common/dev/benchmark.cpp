@@ -1,0 +1,67 @@
+#include "benchmark.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace lab::dev {
+namespace {
+
+// Percentile of a sample (nearest-rank on the sorted values).
+double percentile(std::vector<double> values, double p) {
+    std::sort(values.begin(), values.end());
+    const size_t rank = size_t(std::max(0.0, std::ceil(p / 100.0 * double(values.size())) - 1.0));
+    return values[std::min(rank, values.size() - 1)];
+}
+
+double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+}  // namespace
+
+Benchmark::Benchmark(int frames) : frames_(std::max(frames, 0)), last_done_(Clock::now()) {
+    frame_ms_.reserve(size_t(frames_));
+}
+
+bool Benchmark::frame_finished(int index) {
+    if (!on()) return false;
+    const auto done = Clock::now();
+    if (index > kWarmupFrames - 1 && index > 0) frame_ms_.push_back(ms_between(last_done_, done));
+    last_done_ = done;
+    return index == kWarmupFrames - 1;
+}
+
+void Benchmark::print(const std::string& lab, uint32_t width, uint32_t height, const char* mode) const {
+    double mean = 0.0;
+    for (double v : frame_ms_) mean += v / double(frame_ms_.size());
+    std::printf("benchmark lab=%s width=%u height=%u frames=%zu min_ms=%.3f median_ms=%.3f p95_ms=%.3f mean_ms=%.3f%s%s\n",
+                lab.c_str(), width, height, frame_ms_.size(), *std::min_element(frame_ms_.begin(), frame_ms_.end()),
+                percentile(frame_ms_, 50.0), percentile(frame_ms_, 95.0), mean, mode ? " target=" : "",
+                mode ? mode : "");
+    std::fflush(stdout);
+}
+
+void FramePhases::start() { mark_ = std::chrono::steady_clock::now(); }
+
+void FramePhases::lap(Phase phase) {
+    const auto now = std::chrono::steady_clock::now();
+    ms_[phase] += ms_between(mark_, now);
+    mark_ = now;
+}
+
+void FramePhases::reset(uint64_t ui_redraws) {
+    ms_ = {};
+    ui_redraws_at_reset_ = ui_redraws;
+}
+
+void FramePhases::print(const std::string& lab, size_t frames, uint64_t ui_redraws) const {
+    if (frames == 0) return;
+    const double n = double(frames);
+    std::printf("breakdown lab=%s acquire_ms=%.3f ui_ms=%.3f record_ms=%.3f submit_present_ms=%.3f ui_redraws=%llu\n",
+                lab.c_str(), ms_[Acquire] / n, ms_[Ui] / n, ms_[Record] / n, ms_[SubmitPresent] / n,
+                static_cast<unsigned long long>(ui_redraws - ui_redraws_at_reset_));
+    std::fflush(stdout);
+}
+
+}  // namespace lab::dev

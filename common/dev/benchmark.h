@@ -1,0 +1,58 @@
+// benchmark.h — what `--benchmark N` measures and prints (the dev layer: no lab code calls it).
+//
+// A frame time is the interval between two consecutive frames *finishing* on the GPU, with two
+// frames in flight as in a real loop: the throughput a program's frame rate shows. The first
+// kWarmupFrames are left out (pipeline compilation, caches). The report is one machine-readable
+// line of key=value pairs for scripts and bench/:
+//   benchmark lab=… width=… height=… frames=… min_ms=… median_ms=… p95_ms=… mean_ms=… [target=window]
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lab::dev {
+
+class Benchmark {
+public:
+    static constexpr int kWarmupFrames = 3;
+
+    // `frames` timed intervals (0: no benchmark; every method is then a no-op).
+    explicit Benchmark(int frames);
+    bool on() const { return frames_ > 0; }
+    // Frames to render for `frames` intervals: the warm-up, then n + 1 frames for n intervals.
+    int frames_to_render() const { return on() ? kWarmupFrames + frames_ + 1 : 0; }
+    // Frame number `index` (from 0) has finished on the GPU. True when this ended the warm-up.
+    bool frame_finished(int index);
+    size_t timed_frames() const { return frame_ms_.size(); }
+    // The report line on stdout (`mode`: nullptr, or "window").
+    void print(const std::string& lab, uint32_t width, uint32_t height, const char* mode) const;
+
+private:
+    using Clock = std::chrono::steady_clock;
+    int frames_;
+    Clock::time_point last_done_;
+    std::vector<double> frame_ms_;
+};
+
+// Where a window frame's time goes (printed after `--benchmark N --window`): waiting for a frame
+// slot and a swapchain image; building and recording the UI; recording the lab's draws; submitting
+// and presenting (with a CPU driver such as lavapipe, presenting also waits for the frame to be
+// rendered and copies it to the window system).
+class FramePhases {
+public:
+    enum Phase { Acquire, Ui, Record, SubmitPresent, kCount };
+    void start();           // a frame begins: the clock for its first phase starts
+    void lap(Phase phase);  // the time since the last lap (or start) was spent in `phase`
+    void reset(uint64_t ui_redraws);  // leaves out what came before (the warm-up)
+    void print(const std::string& lab, size_t frames, uint64_t ui_redraws) const;
+
+private:
+    std::chrono::steady_clock::time_point mark_{};
+    std::array<double, kCount> ms_{};
+    uint64_t ui_redraws_at_reset_ = 0;
+};
+
+}  // namespace lab::dev
