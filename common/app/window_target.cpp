@@ -186,10 +186,9 @@ WindowTarget::WindowTarget(const VulkanContext& vk, Window& window)
 }
 
 WindowTarget::~WindowTarget() {
+    // Then the members go in reverse order of declaration: the retired swapchains, the frame
+    // slots, the depth image, framebuffers and views, the swapchain, the render pass.
     vkDeviceWaitIdle(vk_.device());  // nothing to report from a destructor; the run is over
-    destroy_swapchain_images();
-    if (swapchain_) vkDestroySwapchainKHR(vk_.device(), swapchain_, nullptr);
-    retired_.clear();
 }
 
 namespace {
@@ -220,7 +219,7 @@ bool WindowTarget::create_swapchain() {
     uint32_t image_count = caps.minImageCount + 1;
     if (caps.maxImageCount > 0) image_count = std::min(image_count, caps.maxImageCount);
 
-    VkSwapchainKHR old = swapchain_;
+    const VkSwapchainKHR old = swapchain_;
     VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
     info.surface = vk_.surface();
     info.minImageCount = image_count;
@@ -244,15 +243,14 @@ bool WindowTarget::create_swapchain() {
     VkDevice device = vk_.device();
     if (old) {
         Retired retired;
-        retired.swapchain = Handle<VkSwapchainKHR>(
-            old, [device](VkSwapchainKHR s) { vkDestroySwapchainKHR(device, s, nullptr); });
+        retired.swapchain = std::move(swapchain_);
         retired.semaphores = std::move(render_finished_);
         retired.destroy_after = presents_ + kFramesInFlight;
         retired_.push_back(std::move(retired));
     }
     render_finished_.clear();
     destroy_swapchain_images();
-    swapchain_ = created;
+    swapchain_ = Handle<VkSwapchainKHR>(created, [device](VkSwapchainKHR s) { vkDestroySwapchainKHR(device, s, nullptr); });
     extent_ = extent;
 
     uint32_t count = 0;
@@ -378,7 +376,7 @@ void WindowTarget::end_frame(const AfterPass& after_pass) {
     present.waitSemaphoreCount = 1;
     present.pWaitSemaphores = &signal;
     present.swapchainCount = 1;
-    present.pSwapchains = &swapchain_;
+    present.pSwapchains = swapchain_.ptr();
     present.pImageIndices = &image_index_;
     const VkResult presented = vkQueuePresentKHR(vk_.queue(), &present);
     ++presents_;

@@ -97,7 +97,7 @@ private:
     VkSurfaceFormatKHR surface_format_{};
     bool accepts_copies_ = false;  // swapchain images made with TRANSFER_DST usage
     Handle<VkRenderPass> render_pass_;
-    VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+    Handle<VkSwapchainKHR> swapchain_;
     VkExtent2D extent_{};
     // Per swapchain image: its view, framebuffer and render-finished semaphore.
     // (The semaphore must be per image, not per frame in flight: presentation

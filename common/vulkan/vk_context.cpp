@@ -84,46 +84,25 @@ bool has_layer(const char* name) {
 }  // namespace
 
 VulkanContext::VulkanContext(const ContextOptions& options)
-    : no_blit_(options.no_blit), external_count_(options.message_count) {
-    try {
-        create_instance(options);
-        if (options.window) {
-            VK_CHECK(glfwCreateWindowSurface(instance_, options.window, nullptr, &surface_));
-            presenting_ = true;
-        }
-        pick_physical_device();
-        create_device();
-        if (options.validate && options.validation_probe) provoke_validation_messages();
-    } catch (...) {
-        release();  // destroy what was created, then rethrow
-        throw;
+    : external_count_(options.message_count), no_blit_(options.no_blit) {
+    // Each object is a Handle member, declared in creation order: if a step throws, what was made
+    // so far is destroyed in reverse order, as it is when the context goes.
+    create_instance(options);
+    if (options.window) {
+        VkSurfaceKHR surface;
+        VK_CHECK(glfwCreateWindowSurface(instance_, options.window, nullptr, &surface));
+        surface_ = Handle<VkSurfaceKHR>(surface, [instance = instance_.get()](VkSurfaceKHR s) {
+            vkDestroySurfaceKHR(instance, s, nullptr);
+        });
+        presenting_ = true;
     }
+    pick_physical_device();
+    create_device();
+    if (options.validate && options.validation_probe) provoke_validation_messages();
 }
 
-VulkanContext::~VulkanContext() { release(); }
-
-void VulkanContext::release() {
-    if (device_) {
-        vkDeviceWaitIdle(device_);
-        if (upload_fence_) vkDestroyFence(device_, upload_fence_, nullptr);
-        if (upload_pool_) vkDestroyCommandPool(device_, upload_pool_, nullptr);  // frees upload_cmd_
-        allocator_.reset();
-        vkDestroyDevice(device_, nullptr);
-    }
-    if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
-    if (messenger_) {
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-        if (destroy) destroy(instance_, messenger_, nullptr);
-    }
-    if (instance_) vkDestroyInstance(instance_, nullptr);
-    device_ = VK_NULL_HANDLE;
-    surface_ = VK_NULL_HANDLE;
-    messenger_ = VK_NULL_HANDLE;
-    instance_ = VK_NULL_HANDLE;
-    upload_pool_ = VK_NULL_HANDLE;
-    upload_cmd_ = VK_NULL_HANDLE;
-    upload_fence_ = VK_NULL_HANDLE;
+VulkanContext::~VulkanContext() {
+    if (device_) vkDeviceWaitIdle(device_);  // then the members go, the device's objects first
 }
 
 VkBool32 VulkanContext::on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
@@ -191,13 +170,20 @@ void VulkanContext::create_instance(const ContextOptions& options) {
     checks.pEnabledValidationFeatures = enabled_checks;
     checks.pNext = &messenger;  // the messenger also catches messages from vkCreate/DestroyInstance
     if (options.validate) info.pNext = &checks;
-    VK_CHECK(vkCreateInstance(&info, nullptr, &instance_));
+    VkInstance instance;
+    VK_CHECK(vkCreateInstance(&info, nullptr, &instance));
+    instance_ = Handle<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
 
     if (options.validate) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-        if (!create) throw VulkanError("--validate: VK_EXT_debug_utils is not available");
-        VK_CHECK(create(instance_, &messenger, nullptr, &messenger_));
+            vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (!create || !destroy) throw VulkanError("--validate: VK_EXT_debug_utils is not available");
+        VkDebugUtilsMessengerEXT handle;
+        VK_CHECK(create(instance, &messenger, nullptr, &handle));
+        messenger_ = Handle<VkDebugUtilsMessengerEXT>(
+            handle, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
     }
 }
 
@@ -287,14 +273,19 @@ void VulkanContext::create_device() {
     info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
     info.pEnabledFeatures = &enabled_features_;
-    VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
-    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
-    allocator_ = std::make_unique<MemoryAllocator>(device_, memory_);
+    VkDevice device;
+    VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device));
+    device_ = Handle<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+    vkGetDeviceQueue(device, queue_family_, 0, &queue_);
+    allocator_ = std::make_unique<MemoryAllocator>(device, memory_);
 
     VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pool.queueFamilyIndex = queue_family_;
-    VK_CHECK(vkCreateCommandPool(device_, &pool, nullptr, &upload_pool_));
+    VkCommandPool upload_pool;
+    VK_CHECK(vkCreateCommandPool(device, &pool, nullptr, &upload_pool));
+    // Destroying the pool frees upload_cmd_.
+    upload_pool_ = Handle<VkCommandPool>(upload_pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
     // run_once's command buffer and fence, made once and reused by every upload.
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = upload_pool_;
@@ -302,7 +293,9 @@ void VulkanContext::create_device() {
     alloc.commandBufferCount = 1;
     VK_CHECK(vkAllocateCommandBuffers(device_, &alloc, &upload_cmd_));
     VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &upload_fence_));
+    VkFence upload_fence;
+    VK_CHECK(vkCreateFence(device, &fence_info, nullptr, &upload_fence));
+    upload_fence_ = Handle<VkFence>(upload_fence, [device](VkFence f) { vkDestroyFence(device, f, nullptr); });
 }
 
 // Test-only (--dev-validation-probe): one mistake each check of --validate must report, so a
@@ -361,12 +354,12 @@ void VulkanContext::run_once(const std::function<void(VkCommandBuffer)>& record)
     record(upload_cmd_);
     VK_CHECK(vkEndCommandBuffer(upload_cmd_));
 
-    VK_CHECK(vkResetFences(device_, 1, &upload_fence_));
+    VK_CHECK(vkResetFences(device_, 1, upload_fence_.ptr()));
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &upload_cmd_;
     VK_CHECK(vkQueueSubmit(queue_, 1, &submit, upload_fence_));
-    VK_CHECK(vkWaitForFences(device_, 1, &upload_fence_, VK_TRUE, UINT64_MAX));
+    VK_CHECK(vkWaitForFences(device_, 1, upload_fence_.ptr(), VK_TRUE, UINT64_MAX));
 }
 
 }  // namespace lab

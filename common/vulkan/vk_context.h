@@ -74,27 +74,29 @@ private:
     void pick_physical_device();
     void create_device();
     void provoke_validation_messages();  // test hook ContextOptions::validation_probe
-    void release();
 
-    VkInstance instance_ = VK_NULL_HANDLE;
-    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
-    VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+    // The message counters first: the instance reports into them until it is destroyed.
+    int validation_messages_ = 0;
+    int* external_count_ = nullptr;
+    // Owned objects in creation order (destroyed in reverse: vk_handle.h).
+    Handle<VkInstance> instance_;
+    Handle<VkDebugUtilsMessengerEXT> messenger_;
+    Handle<VkSurfaceKHR> surface_;
+    Handle<VkDevice> device_;
+    std::unique_ptr<MemoryAllocator> allocator_;  // given back before the device is destroyed
+    Handle<VkCommandPool> upload_pool_;
+    Handle<VkFence> upload_fence_;                 // run_once's
+    VkCommandBuffer upload_cmd_ = VK_NULL_HANDLE;  // run_once's, freed with the pool
+    // Chosen, not owned.
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
-    VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
-    VkCommandPool upload_pool_ = VK_NULL_HANDLE;
-    VkCommandBuffer upload_cmd_ = VK_NULL_HANDLE;  // run_once's, freed with the pool
-    VkFence upload_fence_ = VK_NULL_HANDLE;        // run_once's
-    std::unique_ptr<MemoryAllocator> allocator_;  // given back before the device is destroyed
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     VkPhysicalDeviceFeatures enabled_features_{};
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     bool presenting_ = false;
     bool no_blit_ = false;
-    int validation_messages_ = 0;
-    int* external_count_ = nullptr;
 };
 
 }  // namespace lab
