@@ -35,7 +35,7 @@ Lighting Lighting::from_scene(const lab::Scene& scene) {
         l.materials.push_back(material);
     }
     if (l.materials.size() > size_t(kMaxMaterials))
-        throw std::runtime_error(scene.file + ": lab 2 supports at most " + std::to_string(kMaxMaterials) +
+        throw std::runtime_error(scene.file + ": at most " + std::to_string(kMaxMaterials) +
                                  " materials, the scene has " + std::to_string(l.materials.size()));
     // The GPU arrays have fixed sizes: extra lights of a type are dropped (with a note).
     int kept[3] = {0, 0, 0};

@@ -1,7 +1,7 @@
-// lights.h — lab 2's lights and lighting models on the CPU side:
+// lights.h — the lights and lighting models on the CPU side (since lab 2):
 //  * Lighting: what the scene file says and the UI edits (ambient, lights, models, materials);
 //  * the buffer layouts the shaders read (lights: storage, materials: uniform; must match
-//    shaders/lab2_lighting/lighting.glsl);
+//    lighting.glsl in this lab's shader folder);
 //  * Variant: the specialization constants that pick a pipeline variant (model, shading, the
 //    number of lights of each type), so a scene pays only for the lights and the model it uses.
 // The panel that edits all this is in lighting_panel.h.
@@ -83,9 +83,10 @@ struct Lighting {
     void pack_materials(GpuMaterial* out) const;
 };
 
-// The specialization constants (constant_id = index), see lighting.glsl:
-// 0 lighting model, 1 shading, 2 directional count, 3 point count, 4 spot count,
-// 5 distribution, 6 NaN check, 7 toon bands; lab 3, per material: 8 albedo map, 9 specular map,
-// 10 emissive map, 11 distorted sampling, 12 mip-level view (variant_of leaves 8..11 at 0).
-using Variant = std::array<int32_t, 13>;
+// The specialization constants by constant_id (lighting.glsl): variant[constant::shading] is constant_id 1.
+namespace constant { enum : size_t { model, shading, directional_count, point_count, spot_count, distribution,
+                                     nan_check, toon_bands,
+                                     // lab 3, per material (variant_of leaves them 0; the renderer sets them per draw)
+                                     albedo_map, specular_map, emissive_map, distorted_sampling, mip_view, count }; }
+using Variant = std::array<int32_t, constant::count>;
 Variant variant_of(const Lighting& lighting);

@@ -55,7 +55,8 @@ private:
         LitConstants lit{};
     };
 
-    void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, bool textured_only);
+    enum class Objects { All, TexturedOnly };  // TexturedOnly: the others were drawn ambient-only
+    void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, Objects objects);
     void load_textures(const Lighting& lighting);
     // The lit pipeline for the current specialization constants (built on first use, then cached).
     const lab::PipelineBuilder::Result& lit_pipeline(const Variant& variant);
@@ -89,6 +90,6 @@ private:
     lab::Handle<VkDescriptorSetLayout> texture_layout_;
     lab::Handle<VkDescriptorPool> texture_pool_;
     std::vector<VkDescriptorSet> material_sets_;       // [material]; VK_NULL_HANDLE: no maps
-    std::vector<std::array<int32_t, 4>> material_maps_;  // [material]: Variant[8..11]
+    std::vector<std::array<int32_t, 4>> material_maps_;  // [material]: albedo_map … distorted_sampling
     std::vector<std::string> warnings_;
 };

@@ -1,4 +1,4 @@
-// lighting_panel.h — lab 2's "Lighting" window (UI only): pick the lighting and shading
+// lighting_panel.h — the "Lighting" window (UI only, since lab 2): pick the lighting and shading
 // models, add / remove / edit lights and materials, show the light markers. Edits last until
 // the scene file is reloaded (R, or the file changes on disk): a reload takes everything
 // from the file again.

@@ -37,7 +37,7 @@ Lighting Lighting::from_scene(const lab::Scene& scene) {
         l.materials.push_back(material);
     }
     if (l.materials.size() > size_t(kMaxMaterials))
-        throw std::runtime_error(scene.file + ": lab 2 supports at most " + std::to_string(kMaxMaterials) +
+        throw std::runtime_error(scene.file + ": at most " + std::to_string(kMaxMaterials) +
                                  " materials, the scene has " + std::to_string(l.materials.size()));
     // The GPU arrays have fixed sizes: extra lights of a type are dropped (with a note).
     int kept[3] = {0, 0, 0};
@@ -151,7 +151,7 @@ Variant variant_of(const Lighting& l) {
     for (size_t i = 0; i < l.lights.size(); ++i) {
         if (slots[i] < 0) continue;
         const lab::ShadowDesc& s = l.lights[i].shadow;
-        int32_t* c = &v[kShadowConstants + 4 * slots[i]];
+        int32_t* c = &v[constant::shadows + 4 * slots[i]];
         c[0] = uses_cube_map(l.lights[i]) ? 2 : 1;  // point lights and wide spots: a cube
         c[1] = s.pcf;
         c[2] = int32_t(s.filter);

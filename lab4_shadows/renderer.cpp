@@ -173,21 +173,21 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     translucent_.clear();
     for (const DrawItem& item : items_)
         (lighting.materials[item.lit.material].opacity < 1.0f ? translucent_ : opaque_).push_back(&item);
-    draw_lit(cmd, frame.slot, lighting, lighting.lights.empty(), opaque_, Pass::Opaque);
+    draw_lit(cmd, frame.slot, lighting, lighting.lights.empty() ? Objects::TexturedOnly : Objects::All, opaque_,
+             Pass::Opaque);
     std::sort(translucent_.begin(), translucent_.end(), [&](const DrawItem* a, const DrawItem* b) {
         return glm::distance(a->centre, camera_position) > glm::distance(b->centre, camera_position);
     });
     for (const DrawItem* item : translucent_) {
         const Pass far = item->mirrored ? Pass::FrontFaces : Pass::BackFaces, near = item->mirrored ? Pass::BackFaces : Pass::FrontFaces;
-        for (Pass pass : {far, near}) draw_lit(cmd, frame.slot, lighting, false, {item}, pass);
+        for (Pass pass : {far, near}) draw_lit(cmd, frame.slot, lighting, Objects::All, {item}, pass);
     }
     if (lighting.options.markers) draw_markers(cmd, frame.slot, lighting);
     if (lighting.shadow_view >= 0 && lighting.shadow_view < int(lighting.lights.size()))  // lab 4: the shadow-map view
         shadow_maps_->draw_view(shadow_view_, cmd, lighting.shadow_slots()[size_t(lighting.shadow_view)], frame.extent);
 }
 
-// Lab 3: textured_only = draw only the objects with maps (the others went the ambient-only way).
-void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, bool textured_only,
+void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, Objects objects,
                         const std::vector<const DrawItem*>& items, Pass pass) {
     Variant variant = variant_of(lighting);
     VkPipeline bound_pipeline = VK_NULL_HANDLE;
@@ -196,10 +196,11 @@ void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& ligh
     for (const DrawItem* drawn : items) {
         const DrawItem& item = *drawn;
         const VkDescriptorSet maps = material_sets_[item.lit.material];
-        if (textured_only && !maps) continue;
-        // The material's maps pick the pipeline (specialization constants 8..11; the mip view only with maps).
-        std::copy(material_maps_[item.lit.material].begin(), material_maps_[item.lit.material].end(), variant.begin() + 8);
-        variant[12] = maps ? int32_t(lighting.mip_view) : 0;
+        if (objects == Objects::TexturedOnly && !maps) continue;
+        // The material's maps pick the pipeline (albedo_map … distorted_sampling; the mip view only with maps).
+        std::copy(material_maps_[item.lit.material].begin(), material_maps_[item.lit.material].end(),
+                  variant.begin() + constant::albedo_map);
+        variant[constant::mip_view] = maps ? int32_t(lighting.mip_view) : 0;
         const lab::PipelineBuilder::Result& pipeline = lit_pipeline(variant, pass);
         if (pipeline.pipeline != bound_pipeline) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
@@ -232,7 +233,7 @@ const lab::PipelineBuilder::Result& Renderer::lit_pipeline(const Variant& varian
     for (uint32_t i = 0; i < variant.size(); ++i)
         entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(variant), variant.data()};
-    const bool maps = variant[8] || variant[9] || variant[10];
+    const bool maps = variant[constant::albedo_map] || variant[constant::specular_map] || variant[constant::emissive_map];
     lab::PipelineBuilder builder;
     builder.shaders(lit_vertex_shader_, maps ? textured_fragment_shader_ : lit_fragment_shader_)
         .vertex_attributes(lab::kPosition | lab::kNormal | lab::kUv | lab::kTangent)

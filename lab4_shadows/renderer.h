@@ -67,7 +67,8 @@ private:
     // Lab 4: opaque objects first, then each translucent one twice: its back faces, its front faces.
     enum class Pass { Opaque, BackFaces, FrontFaces };
 
-    void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, bool textured_only,
+    enum class Objects { All, TexturedOnly };  // TexturedOnly: the others were drawn ambient-only
+    void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, Objects objects,
                   const std::vector<const DrawItem*>& items, Pass pass);
     void load_textures(const Lighting& lighting);
     // The lit pipeline for the current specialization constants (built on first use, then cached).
@@ -102,7 +103,7 @@ private:
     lab::Handle<VkDescriptorSetLayout> texture_layout_;
     lab::Handle<VkDescriptorPool> texture_pool_;
     std::vector<VkDescriptorSet> material_sets_;       // [material]; VK_NULL_HANDLE: no maps
-    std::vector<std::array<int32_t, 4>> material_maps_;  // [material]: Variant[8..11]
+    std::vector<std::array<int32_t, 4>> material_maps_;  // [material]: albedo_map … distorted_sampling
     std::vector<std::string> warnings_;
     // Lab 4: the shadow maps, their per-frame data, the shadow-map view.
     std::unique_ptr<ShadowMaps> shadow_maps_;

@@ -1,4 +1,4 @@
-// lighting.glsl — lab 2's lighting equation (docs/lighting.md), included by lit.vert
+// lighting.glsl — the lighting equation of docs/lighting.md (since lab 2), included by lit.vert
 // (Gouraud: evaluated per vertex) and lit.frag (flat and Phong shading: per pixel).
 // Linear RGB throughout; the *_SRGB render target clamps to [0, 1] and encodes.
 
