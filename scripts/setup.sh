@@ -18,7 +18,8 @@ packages=(
   assimp-testmodels            # real-world OBJ files for the mesh loader tests
   xvfb xauth                   # window tests run under a virtual X server
   xdotool libx11-dev           # the on-demand window test: pointer and keys, closing the window
-  openbox x11-utils jq         # the window soak (bench/soak.sh): a window manager, xprop, scene edits
+  openbox x11-utils            # the window soak (bench/soak.py): a window manager, xprop
+  graphviz                     # docs/architecture.md's picture of the layers (scripts/make_architecture.sh)
   python3-matplotlib python3-numpy  # bench/tradeoff.py: time-against-error plots
 )
 

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# make_architecture.sh — the picture of common/'s layers in docs/architecture.md, drawn from the
+# build's own dependency graph (cmake --graphviz), so it cannot drift from the CMakeLists.
+#
+#   bash scripts/make_architecture.sh [BUILD]          # writes docs/images/architecture.{dot,svg}
+#   bash scripts/make_architecture.sh --check [BUILD]  # exit 1 if the committed .dot is not today's
+#                                                      # graph (CTest: architecture_up_to_date)
+# BUILD: a configured build folder (default: build/). The graph keeps the four layer libraries,
+# the labs and the packages the layers link; a dashed edge is a PRIVATE link (not passed on: a lab
+# linking lab_app does not see lab_dev).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+check=0
+if [ "${1:-}" = --check ]; then check=1; shift; fi
+build="${1:-${LAB_BUILD_DIR:-$root/build}}"
+[ -f "$build/CMakeCache.txt" ] || { echo "make_architecture: $build is not a configured build folder (run scripts/setup.sh)" >&2; exit 2; }
+command -v dot >/dev/null || { echo "make_architecture: graphviz's dot not found (scripts/setup.sh installs graphviz)" >&2; exit 2; }
+tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
+(cd "$tmp" && cmake --graphviz=graph.dot "$build" >/dev/null)
+
+# cmake writes one edge per line: "nodeA" -> "nodeB" [ style = dotted ] // from -> to
+python3 - "$tmp/graph.dot" >"$tmp/architecture.dot" <<'PY'
+import re, sys
+layers = {"lab_content": "content/", "lab_vulkan": "vulkan/", "lab_dev": "dev/", "lab_app": "app/"}
+labs = ["lab1_camera", "lab2_lighting", "lab3_textures", "lab4_shadows"]
+packages = {"Vulkan::Vulkan": "Vulkan", "glfw": "GLFW", "PkgConfig::IMGUI": "Dear ImGui", "glm::glm": "GLM",
+            "nlohmann_json::nlohmann_json": "nlohmann-json", "tinyobjloader::tinyobjloader": "tinyobjloader",
+            "PkgConfig::STB": "stb_image"}
+edges = []
+for line in open(sys.argv[1]):
+    m = re.search(r'->\s*"node\d+"\s*(\[ style = (\w+) \])?\s*// (\S+) -> (\S+)', line)
+    if not m:
+        continue
+    private, a, b = m.group(2) == "dotted", m.group(3), m.group(4)
+    if (a in layers or a in labs) and (b in layers or b in packages):
+        edges.append((a, b, private))
+print("// The layers of common/ and what links them: made by scripts/make_architecture.sh, do not edit.")
+print("digraph architecture {")
+print('  rankdir=TB; node [fontname="Helvetica", fontsize=11]; edge [color="#555555"];')
+print('  subgraph cluster_labs { label="the labs"; style=rounded; color="#888888";')
+for lab in labs:
+    print(f'    "{lab}" [shape=box, style="rounded,filled", fillcolor="#dbeafe"];')
+print('    { rank=same; ' + " -> ".join(f'"{lab}"' for lab in labs) + " [style=invis]; }")
+print("  }")
+print('  subgraph cluster_common { label="common/"; style=rounded; color="#888888";')
+for name, folder in layers.items():
+    print(f'    "{name}" [shape=box, style=filled, fillcolor="#fef3c7", label="{name}\\n{folder}"];')
+print("  }")
+for full, short in packages.items():
+    if any(b == full for _, b, _ in edges):
+        print(f'  "{full}" [shape=box, style=filled, fillcolor="#eeeeee", fontcolor="#444444", label="{short}"];')
+for a, b, private in sorted(set(edges)):
+    print(f'  "{a}" -> "{b}"{" [style=dashed]" if private and a not in labs else ""};')
+print("}")
+PY
+
+dot_file="$root/docs/images/architecture.dot"
+if ((check)); then
+  if ! diff -u "$dot_file" "$tmp/architecture.dot"; then
+    echo "make_architecture: docs/images/architecture.dot is stale; run bash scripts/make_architecture.sh" >&2
+    exit 1
+  fi
+  grep -q "$(sha256sum "$dot_file" | cut -c1-16)" "$root/docs/images/architecture.svg" ||
+    { echo "make_architecture: docs/images/architecture.svg was not drawn from the committed .dot" >&2; exit 1; }
+  echo "make_architecture: docs/images/architecture.dot is today's graph"
+  exit 0
+fi
+mkdir -p "$root/docs/images"
+cp "$tmp/architecture.dot" "$dot_file"
+# The .dot's hash in the SVG, so --check can tell the picture was drawn from it.
+{ dot -Tsvg "$dot_file" | sed "1a <!-- drawn from architecture.dot $(sha256sum "$dot_file" | cut -c1-16) -->"; } \
+  >"$root/docs/images/architecture.svg"
+dot -Tpng -Gdpi=110 "$dot_file" -o "$root/docs/images/architecture.png"
+echo "make_architecture: wrote docs/images/architecture.dot, .svg and .png"
