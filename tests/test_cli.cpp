@@ -1,4 +1,4 @@
-// Tests for the shared command line (common/cli.cpp) and PNG input/output
+// Tests for the shared command line (common/app/cli.cpp, dev_options.cpp) and PNG input/output
 // (common/image_io.cpp).
 #include "cli.h"
 #include "image_io.h"

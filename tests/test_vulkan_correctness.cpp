@@ -3,7 +3,7 @@
 // Each test runs a real lab as a user would (with --validate: the Khronos layer with
 // synchronization validation and best practices, where any message fails the run):
 //  - a failure injected right after a frame is submitted (--dev-fail-after-submit N, a
-//    test-only hook read by common/lab_app.cpp) must end the run with exit code 1 and
+//    test-only hook: common/dev/instruments.cpp) must end the run with exit code 1 and
 //    *no* validation message: the frame loop waits for the GPU before the lab's renderer
 //    (a local of the lab's body) is destroyed while the stack unwinds;
 //  - --validate really reports synchronization hazards and best-practices warnings;

@@ -3,7 +3,7 @@
 #include "offscreen.h"
 #include "shader.h"
 
-// SPIR-V of common/shaders/depth_view.*, compiled by CMake into uint32_t arrays.
+// SPIR-V of common/app/shaders/depth_view.*, compiled by CMake into uint32_t arrays.
 #include "depth_view_frag_spv.h"
 #include "depth_view_vert_spv.h"
 

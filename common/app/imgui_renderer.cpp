@@ -7,7 +7,7 @@
 
 #include <imgui.h>
 
-// SPIR-V of common/shaders/*, compiled by CMake into uint32_t arrays.
+// SPIR-V of common/app/shaders/*, compiled by CMake into uint32_t arrays.
 #include "imgui_frag_spv.h"
 #include "imgui_vert_spv.h"
 #include "overlay_frag_spv.h"

@@ -142,7 +142,7 @@ void Window::watch_input() {
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
         Window& me = owner(w);
         me.scroll_ += float(dy);
-        ++me.events_;  // a wheel step zooms: it needs a frame (bench/soak.sh found it drew none)
+        ++me.events_;  // a wheel step zooms: it needs a frame (the window soak found it drew none)
     });
     glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned int) {
         ++owner(w).events_;

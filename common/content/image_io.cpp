@@ -12,7 +12,7 @@
 #include <system_error>
 
 #define STB_IMAGE_STATIC
-// labcore's one stb_image implementation (every format: texture_image.cpp decodes the labs'
+// lab_content's one stb_image implementation (every format: texture_image.cpp decodes the labs'
 // maps with it; read_png() below checks the PNG signature itself).
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC

@@ -29,7 +29,7 @@ bool SceneReloader::poll(bool force, const std::function<void(const Scene&)>& ap
         scene_ = std::move(fresh);
         error_.clear();
         std::printf("reloaded %s\n", file_.c_str());
-        std::fflush(stdout);  // seen at once when stdout is a file or a pipe (bench/soak.sh reads it)
+        std::fflush(stdout);  // seen at once when stdout is a file or a pipe (bench/soak.py reads it)
         return true;
     } catch (const std::exception& e) {
         error_ = e.what();

@@ -16,7 +16,7 @@
 // lab4_shadows: lab 3's textured shading with ray-traced hard shadows and translucent layers
 // (tests/reference/cpu_shadow.h); --unshadowed / --unlit also write the two other pictures the
 // shadow error metric needs (every light unoccluded / the shadow-casting lights off; lab_compare --shadow).
-// It shares no code with the labs; only labcore's scene loader, meshes and PNG writer.
+// It shares no code with the labs; only lab_content's scene loader, meshes and PNG writer.
 #include "reference/cpu_lighting.h"
 #include "reference/cpu_reference.h"
 #include "reference/cpu_shadow.h"
