@@ -68,6 +68,7 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
     dev::InstrumentSettings instruments;
     instruments.lab = info.name;
     instruments.benchmark_frames = options.benchmark;
+    instruments.window = window_ != nullptr;
     instruments.status_file = window_ ? options.dev.status_file : "";
     instruments.fail_after_submit = options.dev.fail_after_submit;
     dev_ = std::make_unique<dev::Instruments>(instruments);
@@ -127,11 +128,16 @@ void LabApp::run(const Callbacks& callbacks) {
     }
 }
 
-void LabApp::run_window(const Callbacks& cb) {
+void LabApp::run_window(const Callbacks& lab_callbacks) {
     // --frames and --benchmark draw every frame and stop after a count. Otherwise the window
     // draws on demand (redraw_policy.h) and sleeps while nothing changes.
     const bool measured = options_.frames > 0 || dev_->benchmarking();
     const int to_draw = dev_->benchmarking() ? dev_->benchmark_frames() : options_.frames;
+    RenderTarget& target = dev_->measured(*target_);  // a window benchmark times the frame's phases
+    Callbacks cb = lab_callbacks;
+    cb.before_pass = dev_->measured(cb.before_pass);
+    cb.record = dev_->measured(cb.record);
+
     RedrawPolicy policy;
     const auto start = Clock::now();
     auto last_update = start, last_ui = start;
@@ -164,19 +170,15 @@ void LabApp::run_window(const Callbacks& cb) {
         in.requested = std::exchange(redraw_requested_, false) || (ui_->wants_text_input() && sleep);
         in.continuous = measured || continuous_rendering_;
         if (!policy.should_draw(in)) continue;
-        if (!draw_window_frame(cb, std::chrono::duration<float>(woke - last_ui).count())) continue;
+        if (!draw_window_frame(target, cb, std::chrono::duration<float>(woke - last_ui).count())) continue;
         last_ui = woke;
         show_frame_time(woke);
-        if (dev_->benchmarking() && drawn > 0) {  // the frame before this one is done: time it
-            target_->wait_for_previous_frame();
-            dev_->frame_finished(drawn - 1, ui_->redraw_count());
-        }
+        dev_->frame_drawn(target, target.extent(), ui_->redraw_count());
         ++drawn;
         if (measured && drawn >= to_draw) break;  // --frames N: screenshots, tests
     }
     wait_idle();
-    if (dev_->benchmarking() && dev_->report(target_->extent().width, target_->extent().height, true, ui_->redraw_count()))
-        return;
+    if (dev_->benchmarking() && dev_->report(target_->extent(), ui_->redraw_count())) return;
     const double seconds = seconds_since(start);
     std::printf("%s: %d frames in %.1f s (%.1f ms/frame average)\n", info_.name.c_str(), drawn, seconds,
                 drawn ? 1000.0 * seconds / drawn : 0.0);
@@ -192,33 +194,22 @@ void LabApp::show_frame_time(Clock::time_point woke) {
     }
 }
 
-bool LabApp::draw_window_frame(const Callbacks& cb, float ui_dt) {
+bool LabApp::draw_window_frame(RenderTarget& target, const Callbacks& cb, float ui_dt) {
     // The UI is built first: nothing of the frame is recorded yet, so a panel may replace what
     // the lab draws with (a new renderer). Then the lab's own commands outside the pass (lab 4's
     // shadow maps), then the overlay, redrawn if the UI changed; its translucent edges are blended
     // over the lab's picture inside the pass, its opaque panels copied in after it (imgui_renderer.h).
-    dev::FramePhases& phases = dev_->phases();  // where the time goes, for --benchmark --window
-    phases.start();
     const BeforePass before_pass = [&](const Frame& begun) {
-        phases.lap(dev::FramePhases::Acquire);
         ui_->new_frame(*window_, ui_dt);
         cb.ui();
-        phases.lap(dev::FramePhases::Ui);
         if (cb.before_pass) cb.before_pass(begun);
-        phases.lap(dev::FramePhases::Record);
         ui_->prepare(begun.cmd, begun.slot, begun.extent);
-        phases.lap(dev::FramePhases::Ui);
     };
     Frame frame;
-    if (!target_->begin_frame(cb.background(), frame, before_pass)) return false;
+    if (!target.begin_frame(cb.background(), frame, before_pass)) return false;  // minimized, or a new swapchain
     cb.record(frame);
-    phases.lap(dev::FramePhases::Record);
     ui_->render(frame.cmd);
-    phases.lap(dev::FramePhases::Ui);
-    target_->end_frame([&](VkCommandBuffer cmd, VkImage image) { ui_->render_after_pass(cmd, image); });
-    phases.lap(dev::FramePhases::SubmitPresent);
-    dev_->frame_submitted();
-    dev_->window_frame_drawn(frame.extent.width, frame.extent.height);
+    target.end_frame([&](VkCommandBuffer cmd, VkImage image) { ui_->render_after_pass(cmd, image); });
     return true;
 }
 
@@ -243,15 +234,11 @@ void LabApp::run_headless(const Callbacks& cb) {
         target_->begin_frame(cb.background(), frame, cb.before_pass);
         cb.record(frame);
         target_->end_frame();
-        dev_->frame_submitted();
-        if (dev_->benchmarking() && i > 0) {  // the frame before this one is done: time it
-            target_->wait_for_previous_frame();
-            dev_->frame_finished(i - 1, 0);
-        }
+        dev_->frame_drawn(*target_, target_->extent(), 0);
     }
     wait_idle();
     if (dev_->benchmarking()) {
-        dev_->report(options_.width, options_.height, false, 0);
+        dev_->report(target_->extent(), 0);
         if (options_.out.empty()) return;
     } else {
         std::printf("%s: rendered %d frame%s at %ux%u in %.1f ms\n", info_.name.c_str(), frames, frames == 1 ? "" : "s",

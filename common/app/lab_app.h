@@ -88,7 +88,7 @@ public:
 private:
     void run_window(const Callbacks& callbacks);
     void run_headless(const Callbacks& callbacks);
-    bool draw_window_frame(const Callbacks& callbacks, float ui_dt);  // false: no image this time
+    bool draw_window_frame(RenderTarget& target, const Callbacks& callbacks, float ui_dt);  // false: no image
     void poll_input();
     void show_frame_time(std::chrono::steady_clock::time_point woke);
 

@@ -42,26 +42,4 @@ void Benchmark::print(const std::string& lab, uint32_t width, uint32_t height, c
     std::fflush(stdout);
 }
 
-void FramePhases::start() { mark_ = std::chrono::steady_clock::now(); }
-
-void FramePhases::lap(Phase phase) {
-    const auto now = std::chrono::steady_clock::now();
-    ms_[phase] += ms_between(mark_, now);
-    mark_ = now;
-}
-
-void FramePhases::reset(uint64_t ui_redraws) {
-    ms_ = {};
-    ui_redraws_at_reset_ = ui_redraws;
-}
-
-void FramePhases::print(const std::string& lab, size_t frames, uint64_t ui_redraws) const {
-    if (frames == 0) return;
-    const double n = double(frames);
-    std::printf("breakdown lab=%s acquire_ms=%.3f ui_ms=%.3f record_ms=%.3f submit_present_ms=%.3f ui_redraws=%llu\n",
-                lab.c_str(), ms_[Acquire] / n, ms_[Ui] / n, ms_[Record] / n, ms_[SubmitPresent] / n,
-                static_cast<unsigned long long>(ui_redraws - ui_redraws_at_reset_));
-    std::fflush(stdout);
-}
-
 }  // namespace lab::dev

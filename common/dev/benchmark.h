@@ -7,7 +7,6 @@
 //   benchmark lab=… width=… height=… frames=… min_ms=… median_ms=… p95_ms=… mean_ms=… [target=window]
 #pragma once
 
-#include <array>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -35,24 +34,6 @@ private:
     int frames_;
     Clock::time_point last_done_;
     std::vector<double> frame_ms_;
-};
-
-// Where a window frame's time goes (printed after `--benchmark N --window`): waiting for a frame
-// slot and a swapchain image; building and recording the UI; recording the lab's draws; submitting
-// and presenting (with a CPU driver such as lavapipe, presenting also waits for the frame to be
-// rendered and copies it to the window system).
-class FramePhases {
-public:
-    enum Phase { Acquire, Ui, Record, SubmitPresent, kCount };
-    void start();           // a frame begins: the clock for its first phase starts
-    void lap(Phase phase);  // the time since the last lap (or start) was spent in `phase`
-    void reset(uint64_t ui_redraws);  // leaves out what came before (the warm-up)
-    void print(const std::string& lab, size_t frames, uint64_t ui_redraws) const;
-
-private:
-    std::chrono::steady_clock::time_point mark_{};
-    std::array<double, kCount> ms_{};
-    uint64_t ui_redraws_at_reset_ = 0;
 };
 
 }  // namespace lab::dev

@@ -10,14 +10,23 @@ Instruments::Instruments(InstrumentSettings settings)
     if (!settings_.status_file.empty()) status_ = std::make_unique<StatusFile>(settings_.status_file);
 }
 
-void Instruments::frame_submitted() {
-    if (++submitted_ == settings_.fail_after_submit)
-        throw VulkanError("--dev-fail-after-submit " + std::to_string(settings_.fail_after_submit) +
-                          ": injected failure right after submitting frame " + std::to_string(submitted_));
+RenderTarget& Instruments::measured(RenderTarget& target) {
+    return benchmarking() && settings_.window ? phases_.timed(target) : target;
 }
 
-void Instruments::window_frame_drawn(uint32_t width, uint32_t height) {
-    if (status_) status_->frame_drawn(width, height);
+FramePhases::LabCommands Instruments::measured(FramePhases::LabCommands lab_commands) {
+    return benchmarking() && settings_.window ? phases_.timed(std::move(lab_commands)) : lab_commands;
+}
+
+void Instruments::frame_drawn(RenderTarget& target, VkExtent2D extent, uint64_t ui_redraws) {
+    if (++drawn_ == settings_.fail_after_submit)
+        throw VulkanError("--dev-fail-after-submit " + std::to_string(settings_.fail_after_submit) +
+                          ": injected failure right after submitting frame " + std::to_string(drawn_));
+    if (status_) status_->frame_drawn(extent.width, extent.height);
+    if (benchmarking() && drawn_ > 1) {  // the frame before this one is done: one interval
+        target.wait_for_previous_frame();
+        if (benchmark_.frame_finished(drawn_ - 2)) phases_.reset(ui_redraws);  // the breakdown skips the warm-up too
+    }
 }
 
 void Instruments::window_went_idle() {
@@ -25,14 +34,10 @@ void Instruments::window_went_idle() {
     if (status_) status_->went_idle();
 }
 
-void Instruments::frame_finished(int index, uint64_t ui_redraws) {
-    if (benchmark_.frame_finished(index)) phases_.reset(ui_redraws);  // the breakdown skips the warm-up too
-}
-
-bool Instruments::report(uint32_t width, uint32_t height, bool window, uint64_t ui_redraws) const {
+bool Instruments::report(VkExtent2D extent, uint64_t ui_redraws) const {
     if (benchmark_.timed_frames() == 0) return false;
-    benchmark_.print(settings_.lab, width, height, window ? "window" : nullptr);
-    if (window) phases_.print(settings_.lab, benchmark_.timed_frames(), ui_redraws);
+    benchmark_.print(settings_.lab, extent.width, extent.height, settings_.window ? "window" : nullptr);
+    if (settings_.window) phases_.print(settings_.lab, benchmark_.timed_frames(), ui_redraws);
     return true;
 }
 
