@@ -220,20 +220,15 @@ int main(int argc, char** argv) {
         const uint64_t seed = o.first + uint64_t(k);
         const Generated gen = generate(seed);
         const std::string name = dir + "/seed" + std::to_string(seed);
-        std::ofstream(name + ".json") << gen.scene.dump(1);
-        const std::string args = "--scene " + quoted(name + ".json") + " --headless --validate --out " + quoted(name + ".png") +
-                                 " --width " + std::to_string(o.width) + " --height " + std::to_string(o.height);
-        const std::string command = std::string(LAB4_EXE) + " " + args;
-        std::error_code ec;
-        fs::remove(name + ".png", ec);
-        const RunResult run = run_lab(LAB4_EXE, args, name + ".log");
+        const std::string scene = write_file(dir, "seed" + std::to_string(seed) + ".json", gen.scene.dump(1));
+        const RenderResult run = render_lab(LAB4_EXE, scene, dir, "seed" + std::to_string(seed), o.width, o.height);
         std::string verdict;
         double share = 1.0;
-        if (run.exit_code != 0 || !fs::exists(name + ".png")) {
-            verdict = "lab4_shadows exited " + std::to_string(run.exit_code) + ":\n" + run.log;
+        if (!run.ok()) {
+            verdict = run.outcome() + ":\n" + run.log;
         } else {
-            const lab::Image8 actual = lab::read_png(name + ".png");
-            const ref::ShadowReference reference = ref::render_shadow_reference(lab::load_scene(name + ".json"), o.width, o.height);
+            const lab::Image8 actual = lab::read_png(run.png);
+            const ref::ShadowReference reference = ref::render_shadow_reference(lab::load_scene(scene), o.width, o.height);
             const lab::Image8 s = ref::encode_srgb(reference.shadowed);
             ref::ShadowMetricOptions options;
             options.band = kBand;
@@ -288,9 +283,10 @@ int main(int argc, char** argv) {
         if (!verdict.empty()) {
             ++failed;
             std::printf("FAIL seed %llu: %s\n  scene: %s\n  reproduce: %s\n  pictures: %s{.png,_expected.png,_metric.png}\n",
-                        (unsigned long long)seed, verdict.c_str(), gen.scene.dump().c_str(), command.c_str(), name.c_str());
+                        (unsigned long long)seed, verdict.c_str(), gen.scene.dump().c_str(), run.command().c_str(), name.c_str());
         } else if (!o.keep) {
-            for (const char* ext : {".png", ".log"}) fs::remove(name + ext, ec);
+            std::error_code ec;
+            for (const std::string& file : {run.png, run.log_path}) fs::remove(file, ec);
         }
         std::fflush(stdout);
     }

@@ -1,4 +1,7 @@
 // lab_runner.h — run a lab binary as a subprocess from a test, as a user would.
+//
+// No gtest here: tests/lab4_random_scenes.cpp (a plain program) renders through it too. The render
+// tests' expectations on top of it are in lab_render.h.
 #pragma once
 
 #include <sys/wait.h>
@@ -23,6 +26,15 @@ inline std::string read_text(const std::string& path) {
     return s.str();
 }
 
+// Writes `text` byte for byte to DIR/NAME (creating the folders) and returns that path: the tests'
+// scene files, OBJ and MTL files.
+inline std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
+    const std::string path = dir + "/" + name;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
 struct RunResult {
     int exit_code = -1;  // −1: did not exit normally (crashed / killed)
     std::string log;     // stdout + stderr
@@ -35,21 +47,94 @@ inline std::string test_output_dir(const std::string& sub) {
     return (dir && *dir ? std::string(dir) : std::string(LAB_BINARY_DIR) + "/test_output") + "/" + sub;
 }
 
-// Runs `exe` with `args` (already quoted), stdout + stderr into `log_path`. With $LAB_EXE_DIR set
-// the lab binary of the same name in that folder runs instead (the grader's build of a stubbed lab),
-// and with $LAB_SHADER_DIR set too, it loads its shaders from there (--dev-shader-dir): the grader
-// runs these tests and cannot put a flag on the lab's command line itself.
-inline RunResult run_lab(const std::string& exe, const std::string& args, const std::string& log_path) {
-    std::filesystem::create_directories(std::filesystem::path(log_path).parent_path());
+// The command that runs `exe`: with $LAB_EXE_DIR set the lab binary of the same name in that folder
+// runs instead (the grader's build of a stubbed lab), and with $LAB_SHADER_DIR set too, it loads its
+// shaders from there (--dev-shader-dir): the grader runs these tests and cannot put a flag on the
+// lab's command line itself.
+inline std::string lab_command(const std::string& exe) {
     const char* exe_dir = std::getenv("LAB_EXE_DIR");
     const char* shader_dir = std::getenv("LAB_SHADER_DIR");
     const bool graded = exe_dir && *exe_dir;
     const std::string program = graded ? std::string(exe_dir) + "/" + std::filesystem::path(exe).filename().string() : exe;
-    const std::string dev_args = graded && shader_dir && *shader_dir ? " --dev-shader-dir " + quoted(shader_dir) : "";
-    const std::string command = quoted(program) + dev_args + " " + args + " > " + quoted(log_path) + " 2>&1";
+    return quoted(program) + (graded && shader_dir && *shader_dir ? " --dev-shader-dir " + quoted(shader_dir) : "");
+}
+
+// Runs `exe` (lab_command) with `args` (already quoted), stdout + stderr into `log_path`.
+inline RunResult run_lab(const std::string& exe, const std::string& args, const std::string& log_path) {
+    std::filesystem::create_directories(std::filesystem::path(log_path).parent_path());
+    const std::string command = lab_command(exe) + " " + args + " > " + quoted(log_path) + " 2>&1";
     const int status = std::system(command.c_str());
     RunResult r;
     if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
     r.log = read_text(log_path);
+    return r;
+}
+
+// run_lab() in a window, under a virtual X server (xvfb-run). The lab's own exit code is written to
+// LOG.exit and read back, since xvfb-run's exit code and messages about its own clean-up (in
+// LOG.xvfb) are not the lab's.
+inline RunResult run_lab_in_window(const std::string& exe, const std::string& args, const std::string& log_path) {
+    std::filesystem::create_directories(std::filesystem::path(log_path).parent_path());
+    const std::string code_file = log_path + ".exit";
+    std::error_code ec;
+    std::filesystem::remove(code_file, ec);
+    const std::string lab = lab_command(exe) + " " + args + " > " + quoted(log_path) + " 2>&1; echo $? > " + quoted(code_file);
+    const std::string command =
+        "xvfb-run -a -s '-screen 0 1280x800x24' sh -c " + quoted(lab) + " > " + quoted(log_path + ".xvfb") + " 2>&1";
+    std::system(command.c_str());
+    RunResult r;
+    const std::string code = read_text(code_file);
+    if (!code.empty()) r.exit_code = std::stoi(code);
+    r.log = read_text(log_path);
+    return r;
+}
+
+// ---------------------------------------------------------------- headless renders
+
+// The command line of a headless render with validation on (any message fails the run):
+//     --scene SCENE --headless --validate --out PNG --width W --height H [EXTRA]
+inline std::string render_args(const std::string& scene, const std::string& png, int width, int height,
+                               const std::string& extra = "") {
+    return "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) + " --width " +
+           std::to_string(width) + " --height " + std::to_string(height) + (extra.empty() ? "" : " " + extra);
+}
+
+struct RenderResult : RunResult {
+    std::string exe, args;  // the command line run (`exe args` reproduces it)
+    std::string scene;
+    std::string png;        // where the picture was asked for: DIR/NAME.png
+    std::string log_path;   // DIR/NAME.log
+    bool wrote_png = false; // this run left a PNG there (an older one is removed before the run)
+
+    bool ok() const { return exit_code == 0 && wrote_png; }
+    std::string command() const { return exe + " " + args; }
+    // How the run ended, one line: "lab4_shadows exited 1", "... wrote no PNG", "... crashed".
+    std::string outcome() const {
+        const std::string lab = std::filesystem::path(exe).filename().string();
+        if (exit_code < 0) return lab + " did not exit normally (crashed or killed)";
+        if (exit_code == 0 && !wrote_png) return lab + " exited 0 but wrote no PNG (" + png + ")";
+        return lab + " exited " + std::to_string(exit_code);
+    }
+    // Why the run is not ok(), for a failure message: the outcome, the command, the log.
+    std::string failure() const {
+        return outcome() + " on " + scene + "\n  command: " + command() + "\n  log (" + log_path + "):\n" + log;
+    }
+};
+
+// Renders `scene` with the lab binary `exe`, headless with validation on, at width × height into
+// OUT_DIR/NAME.png, the log in OUT_DIR/NAME.log; `extra_args` (already quoted: --dev-… flags) go
+// last. Expects nothing: the caller judges exit code, log and picture.
+inline RenderResult render_lab(const std::string& exe, const std::string& scene, const std::string& out_dir,
+                               const std::string& name, int width, int height, const std::string& extra_args = "") {
+    RenderResult r;
+    r.exe = exe;
+    r.scene = scene;
+    r.png = out_dir + "/" + name + ".png";
+    r.log_path = out_dir + "/" + name + ".log";
+    r.args = render_args(scene, r.png, width, height, extra_args);
+    std::error_code ec;
+    std::filesystem::remove(r.png, ec);
+    static_cast<RunResult&>(r) = run_lab(exe, r.args, r.log_path);
+    r.wrote_png = std::filesystem::exists(r.png);
     return r;
 }

@@ -10,72 +10,32 @@
 // most 0.5 % of all pixels beyond 1/255 (silhouette pixels whose centre lies a
 // rounding error away from an edge may legitimately go either way).
 // A failing comparison writes OUT_diff.png (expected | actual | diff) next to the output.
-#include "reference/cpu_reference.h"
-#include "reference/image_compare.h"
-#include "lab_runner.h"
+#include "lab_render.h"
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kOutDir = test_output_dir("lab1");
+const LabUnderTest kLab(LAB1_EXE, "lab1");  // writes into test_output/lab1/
 const std::string kTestScenes = std::string(LAB_SOURCE_DIR) + "/tests/scenes";
 const std::string kDefaultScene = std::string(LAB_SOURCE_DIR) + "/scenes/lab1_camera.json";
-
-// Runs lab 1 (see lab_runner.h).
-RunResult run_lab(const std::string& args, const std::string& log_path) { return ::run_lab(LAB1_EXE, args, log_path); }
-
-std::string render_args(const std::string& scene, const std::string& png, int w, int h) {
-    return "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) +
-           " --width " + std::to_string(w) + " --height " + std::to_string(h);
-}
-
-// Renders `scene` with the lab at w × h into test_output/lab1/NAME.png.
-// Returns the PNG path ("" after a failed assertion).
-std::string render_with_lab(const std::string& scene, const std::string& name, int w, int h) {
-    const std::string png = kOutDir + "/" + name + ".png";
-    std::error_code ec;
-    fs::remove(png, ec);
-    const RunResult run = run_lab(render_args(scene, png, w, h), kOutDir + "/" + name + ".log");
-    EXPECT_EQ(run.exit_code, 0) << "lab1_camera failed on " << scene << ":\n" << run.log;
-    if (run.exit_code != 0) return "";
-    EXPECT_TRUE(fs::exists(png)) << "no PNG written: " << png << "\n" << run.log;
-    return fs::exists(png) ? png : "";
-}
 
 // The whole check: lab render vs reference render of the same file.
 void expect_matches_reference(const std::string& scene_file, const std::string& name, int w,
                               int h) {
     ASSERT_TRUE(fs::exists(scene_file)) << "missing scene " << scene_file;
-    const std::string png = render_with_lab(scene_file, name, w, h);
+    const std::string png = kLab.render(scene_file, name, w, h);
     if (png.empty()) return;  // already reported
     const lab::Image8 actual = lab::read_png(png);
     ASSERT_EQ(actual.width, w);
     ASSERT_EQ(actual.height, h);
-
     const lab::Scene scene = lab::load_scene(scene_file);
-    const ref::RefImage reference = ref::render_reference(scene, w, h, ref::shade_unlit);
-    // The scene must actually show something, or the comparison proves little.
-    size_t covered = 0;
-    for (int id : reference.object_id) covered += id >= 0;
-    EXPECT_GT(covered, reference.object_id.size() / 20) << "test scene shows almost nothing";
-
-    const ref::CompareResult result =
-        ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png");
-    EXPECT_TRUE(result.passed()) << scene_file << "\n" << result.describe();
-    std::printf("[ compare ] %s: %s\n", name.c_str(), result.describe().c_str());
-    ::testing::Test::RecordProperty("max_diff_interior", result.max_diff_interior);
-    ::testing::Test::RecordProperty("percent_differing", std::to_string(100.0 * result.fraction_differing));
+    expect_close_to_reference(kLab, name, scene_file, actual, ref::render_reference(scene, w, h, ref::shade_unlit));
 }
 
 // --- scenes ---------------------------------------------------------------------
@@ -132,13 +92,7 @@ TEST(Lab1Render, NearAndFarPlanesCutThroughObjects) {
 // --- behaviour ------------------------------------------------------------------
 
 TEST(Lab1Render, SameRunTwiceIsByteIdentical) {
-    const std::string a = render_with_lab(kDefaultScene, "determinism_a", 320, 180);
-    const std::string b = render_with_lab(kDefaultScene, "determinism_b", 320, 180);
-    ASSERT_FALSE(a.empty());
-    ASSERT_FALSE(b.empty());
-    const std::string bytes_a = read_text(a), bytes_b = read_text(b);
-    EXPECT_FALSE(bytes_a.empty());
-    EXPECT_TRUE(bytes_a == bytes_b) << a << " and " << b << " differ";
+    expect_same_run_twice_is_byte_identical(kLab, kDefaultScene);
 }
 
 TEST(Lab1Render, InvalidSceneExitsWithCode2AndWritesNoPng) {
@@ -147,33 +101,27 @@ TEST(Lab1Render, InvalidSceneExitsWithCode2AndWritesNoPng) {
     // The test scene really is invalid for the loader (a typo'd key).
     EXPECT_THROW(lab::load_scene(scene), lab::SceneError);
 
-    const std::string png = kOutDir + "/invalid_scene.png";
-    std::error_code ec;
-    fs::remove(png, ec);
-    const RunResult run = run_lab(render_args(scene, png, 64, 64), kOutDir + "/invalid_scene.log");
+    const RenderResult run = kLab.run(scene, "invalid_scene", 64, 64);
     EXPECT_EQ(run.exit_code, 2) << run.log;
-    EXPECT_FALSE(fs::exists(png)) << "a PNG was written for an invalid scene";
+    EXPECT_FALSE(run.wrote_png) << "a PNG was written for an invalid scene";
     // The message names the file (one line "FILE: PATH: reason").
     EXPECT_NE(run.log.find("lab1_invalid.json"), std::string::npos) << run.log;
 }
 
 TEST(Lab1Render, MissingSceneFileExitsWithCode2) {
-    const std::string png = kOutDir + "/missing_scene.png";
-    std::error_code ec;
-    fs::remove(png, ec);
-    const RunResult run = run_lab(render_args(kTestScenes + "/does_not_exist.json", png, 64, 64),
-                                  kOutDir + "/missing_scene.log");
+    const RenderResult run = kLab.run(kTestScenes + "/does_not_exist.json", "missing_scene", 64, 64);
     EXPECT_EQ(run.exit_code, 2) << run.log;
-    EXPECT_FALSE(fs::exists(png));
+    EXPECT_FALSE(run.wrote_png);
 }
 
 TEST(Lab1Render, OutputIntoAMissingFolderExitsWithCode2BeforeRendering) {
-    const RunResult run = run_lab(render_args(kDefaultScene, kOutDir + "/no_such_folder/x.png", 64, 64),
-                                  kOutDir + "/missing_folder.log");
+    // (run_lab, not kLab.run: the log must not go into the missing folder, which would create it)
+    const RunResult run = run_lab(kLab.exe(), render_args(kDefaultScene, kLab.path("no_such_folder/x.png"), 64, 64),
+                                  kLab.path("missing_folder.log"));
     EXPECT_EQ(run.exit_code, 2) << run.log;
     EXPECT_NE(run.log.find("no_such_folder"), std::string::npos) << run.log;
     EXPECT_EQ(run.log.find("rendered"), std::string::npos) << run.log;  // nothing was rendered
-    EXPECT_FALSE(fs::exists(kOutDir + "/no_such_folder"));
+    EXPECT_FALSE(fs::exists(kLab.path("no_such_folder")));
 }
 
 }  // namespace

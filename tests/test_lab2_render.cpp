@@ -16,63 +16,32 @@
 // Variants of a scene (another lighting model, ...) are written to test_output/lab2/ with the
 // "lighting" section replaced; relative .obj paths are made absolute first.
 #include "reference/cpu_lighting.h"
-#include "reference/cpu_reference.h"
-#include "reference/image_compare.h"
-#include "lab_runner.h"
+#include "lab_render.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
-namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const std::string kOutDir = test_output_dir("lab2");
+constexpr int kWidth = 320, kHeight = 180;
+const LabUnderTest kLab(LAB2_EXE, "lab2", kWidth, kHeight);  // writes into test_output/lab2/
 const std::string kTestScenes = std::string(LAB_SOURCE_DIR) + "/tests/scenes";
 const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
-constexpr int kWidth = 320, kHeight = 180;
 
 // `scene_file` with its "lighting" section's keys replaced by `lighting` (a JSON object text),
 // written to test_output/lab2/NAME.json. Returns the new file.
 std::string variant(const std::string& scene_file, const std::string& name, const std::string& lighting) {
-    json scene = json::parse(read_text(scene_file));
-    const json overrides = json::parse(lighting);  // (a temporary would die before the loop body)
-    for (const auto& [key, value] : overrides.items()) scene["lighting"][key] = value;
-    for (json& object : scene["objects"]) {
-        const std::string mesh = object["mesh"];
-        if (mesh.size() > 4 && mesh.substr(mesh.size() - 4) == ".obj" && fs::path(mesh).is_relative())
-            object["mesh"] = (fs::path(scene_file).parent_path() / mesh).string();
-    }
-    fs::create_directories(kOutDir);
-    const std::string out = kOutDir + "/" + name + ".json";
-    std::ofstream(out) << scene.dump(1);
-    return out;
-}
-
-// Renders `scene` with the lab into test_output/lab2/NAME.png; "" after a failed assertion.
-std::string render_with_lab(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight) {
-    fs::create_directories(kOutDir);
-    const std::string png = kOutDir + "/" + name + ".png", log = kOutDir + "/" + name + ".log";
-    std::error_code ec;
-    fs::remove(png, ec);
-    const RunResult run = run_lab(LAB2_EXE,
-                                  "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) +
-                                      " --width " + std::to_string(w) + " --height " + std::to_string(h),
-                                  log);
-    const int exit_code = run.exit_code;
-    EXPECT_EQ(exit_code, 0) << "lab2_lighting failed on " << scene << ":\n" << run.log;
-    if (exit_code != 0) return "";
-    EXPECT_TRUE(fs::exists(png)) << "no PNG written: " << png;
-    return fs::exists(png) ? png : "";
+    const json overrides = json::parse(lighting);
+    return scene_variant(kLab, scene_file, name, [&](json& scene) {
+        for (const auto& [key, value] : overrides.items()) scene["lighting"][key] = value;
+    });
 }
 
 // The reference with the designed discontinuities folded into the object ids, so that
@@ -97,22 +66,13 @@ ref::CompareOptions lit_options(const lab::Scene& scene) {
 // (and the image through `actual`) for further reporting.
 ref::CompareResult expect_matches_reference(const std::string& scene_file, const std::string& name,
                                             lab::Image8* actual_out = nullptr) {
-    const std::string png = render_with_lab(scene_file, name);
+    const std::string png = kLab.render(scene_file, name);
     if (png.empty()) return {};
     const lab::Image8 actual = lab::read_png(png);
     const lab::Scene scene = lab::load_scene(scene_file);
-    const ref::RefImage reference = reference_of(scene, ref::make_lighting_shader(scene));
-    size_t covered = 0;
-    for (int id : reference.object_id) covered += id >= 0;
-    EXPECT_GT(covered, reference.object_id.size() / 20) << "test scene shows almost nothing";
     EXPECT_EQ(ref::magenta_pixels(actual), 0u) << "NaN/Inf marker color in " << png;
-
-    const ref::CompareResult result =
-        ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png", lit_options(scene));
-    EXPECT_TRUE(result.passed()) << scene_file << "\n" << result.describe();
-    std::printf("[ compare ] %s: max interior diff %d/255, %.3f%% of pixels beyond 2/255 (%zu edge pixels)\n",
-                name.c_str(), result.max_diff_interior, 100.0 * result.fraction_differing, result.edge_pixels);
-    ::testing::Test::RecordProperty("max_diff_interior", result.max_diff_interior);
+    const ref::CompareResult result = expect_close_to_reference(
+        kLab, name, scene_file, actual, reference_of(scene, ref::make_lighting_shader(scene)), lit_options(scene));
     if (actual_out) *actual_out = actual;
     return result;
 }
@@ -233,7 +193,7 @@ TEST_P(Lab2StressModels, NoNaN) {
     const std::string name = "stress_" + model + "_" + shading;
     const std::string file = variant(kTestScenes + "/lab2_stress_numbers.json", name,
                                      R"({"nan_check": "on", "model": ")" + model + R"(", "shading": ")" + shading + "\"}");
-    const std::string png = render_with_lab(file, name);
+    const std::string png = kLab.render(file, name);
     if (png.empty()) return;
     EXPECT_EQ(ref::magenta_pixels(lab::read_png(png)), 0u) << "NaN/Inf reached a pixel: " << png;
 }
@@ -245,27 +205,18 @@ INSTANTIATE_TEST_SUITE_P(AllModels, Lab2StressModels,
 
 TEST(Lab2Stress, DetectorFiresOnInjectedNaN) {
     const std::string file = variant(kTestScenes + "/lab2_stress_numbers.json", "nan_self_test", R"({"nan_check": "self_test"})");
-    const std::string png = render_with_lab(file, "nan_self_test");
+    const std::string png = kLab.render(file, "nan_self_test");
     if (png.empty()) return;
     const lab::Scene scene = lab::load_scene(file);
     const ref::RefImage reference = ref::render_reference(scene, kWidth, kHeight);
-    size_t covered = 0;
-    for (int id : reference.object_id) covered += id >= 0;
     // Every drawn pixel is magenta; silhouette pixels may go either way.
-    EXPECT_GT(ref::magenta_pixels(lab::read_png(png)), covered * 95 / 100);
+    EXPECT_GT(ref::magenta_pixels(lab::read_png(png)), covered_pixels(reference) * 95 / 100);
 }
 
 }  // namespace
 
 namespace {
 TEST(Lab2Render, SameRunTwiceIsByteIdentical) {
-    const std::string scene = kScenes + "/lab2_lighting.json";  // markers on: the whole default frame
-    const std::string a = render_with_lab(scene, "determinism_a");
-    const std::string b = render_with_lab(scene, "determinism_b");
-    ASSERT_FALSE(a.empty());
-    ASSERT_FALSE(b.empty());
-    const std::string bytes_a = read_text(a), bytes_b = read_text(b);
-    EXPECT_FALSE(bytes_a.empty());
-    EXPECT_TRUE(bytes_a == bytes_b) << a << " and " << b << " differ";
+    expect_same_run_twice_is_byte_identical(kLab, kScenes + "/lab2_lighting.json");  // markers on: the whole default frame
 }
 }  // namespace

@@ -23,12 +23,9 @@
 //     LOD above, and mip levels blended with lavapipe's 4-bit mipmapPrecisionBits).
 // An NVIDIA H100 keeps to the envelope but not to the exact lookup (docs/testing.md).
 // The filtering lesson compares each sampler setting with a 16×16 supersampled ground truth.
-#include "reference/cpu_reference.h"
 #include "reference/cpu_texture.h"
-#include "reference/image_compare.h"
 #include "image_io.h"
-#include "lab_runner.h"
-#include "temp_dir.h"
+#include "lab_render.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -49,49 +46,26 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab3";
+constexpr int kWidth = 320, kHeight = 180;
+const LabUnderTest kLab(LAB3_EXE, "lab3", kWidth, kHeight);  // writes into test_output/lab3/
+const std::string kOutDir = kLab.dir();
 const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
 const std::string kTextures = kScenes + "/textures";
-constexpr int kWidth = 320, kHeight = 180;
 
 // A scene file in test_output/lab3: `materials` and `objects` JSON, a camera, ambient 1 and no
 // lights unless `lights` says otherwise (then colour = emissive + albedo·A exactly).
 std::string write_scene(const std::string& name, const std::string& materials, const std::string& objects,
                         const std::string& camera = R"({"position": [0, 1.6, 1.6], "target": [0, 0, 0]})",
                         const std::string& lights = "[]", const std::string& ambient = "1.0") {
-    fs::create_directories(kOutDir);
-    const std::string file = kOutDir + "/" + name + ".json";
-    std::ofstream(file) << R"({"camera": )" << camera << R"(, "background": [0.1, 0.1, 0.1], "ambient": {"intensity": )"
-                        << ambient << R"(}, "lighting": {"nan_check": "on"}, "lights": )" << lights
-                        << R"(, "materials": )" << materials << R"(, "objects": )" << objects << "}";
-    return file;
+    return kLab.write_scene(name, R"({"camera": )" + camera + R"(, "background": [0.1, 0.1, 0.1], "ambient": {"intensity": )" +
+                                      ambient + R"(}, "lighting": {"nan_check": "on"}, "lights": )" + lights +
+                                      R"(, "materials": )" + materials + R"(, "objects": )" + objects + "}");
 }
 
 // A 2×2 plane at the origin with material "m".
 std::string plane_scene(const std::string& name, const std::string& material, const std::string& lights = "[]") {
     return write_scene(name, R"({"m": )" + material + "}", R"([{"mesh": "plane", "material": "m", "scale": [2, 1, 2]}])",
                        R"({"position": [0, 1.6, 1.6], "target": [0, 0, 0]})", lights);
-}
-
-RunResult run(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight,
-              const std::string& extra = "") {
-    fs::create_directories(kOutDir);
-    const std::string png = kOutDir + "/" + name + ".png";
-    std::error_code ec;
-    fs::remove(png, ec);
-    return run_lab(LAB3_EXE,
-                   "--scene " + quoted(scene) + " --headless --validate --out " + quoted(png) + " --width " +
-                       std::to_string(w) + " --height " + std::to_string(h) + " " + extra,
-                   kOutDir + "/" + name + ".log");
-}
-
-// Renders with the lab; "" after a failed assertion.
-std::string render(const std::string& scene, const std::string& name, int w = kWidth, int h = kHeight,
-                   const std::string& extra = "") {
-    const RunResult r = run(scene, name, w, h, extra);
-    EXPECT_EQ(r.exit_code, 0) << "lab3_textures failed on " << scene << ":\n" << r.log;
-    const std::string png = kOutDir + "/" + name + ".png";
-    return r.exit_code == 0 && fs::exists(png) ? png : "";
 }
 
 struct Verdict {
@@ -182,7 +156,7 @@ Envelope sampling_envelope(const lab::Scene& scene, const ref::RefImage& referen
 Verdict expect_matches(const std::string& scene_file, const std::string& name, bool texel_edges = false,
                        bool checkerboard_expected = false, const std::string& extra_args = "") {
     Verdict v;
-    const std::string png = render(scene_file, name, kWidth, kHeight, extra_args);
+    const std::string png = kLab.render(scene_file, name, extra_args);
     if (png.empty()) return v;
     const lab::Image8 actual = lab::read_png(png);
     const lab::Scene scene = lab::load_scene(scene_file);
@@ -214,9 +188,7 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
     else
         EXPECT_EQ(ref::magenta_pixels(actual), 0u) << "NaN/Inf (or the missing-image checkerboard) in " << png;
     const Envelope envelope = sampling_envelope(scene, reference);
-    size_t covered = 0;
     for (size_t p = 0; p < mask.size(); ++p) {
-        covered += reference.object_id[p] >= 0;
         if (mask[p] || !reference.hits[p].hit) continue;
         int diff = 0;
         bool outside = false;
@@ -236,7 +208,7 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
             v.outside_envelope_minified += outside;
         }
     }
-    EXPECT_GT(covered, mask.size() / 10) << "test scene shows almost nothing";
+    EXPECT_GT(covered_pixels(reference), mask.size() / 10) << "test scene shows almost nothing";
     EXPECT_EQ(v.outside_envelope_magnified, 0u) << name << ": magnified pixels outside what the specification allows";
     EXPECT_LE(v.outside_envelope_minified, v.minified / 100) << name << ": minified pixels outside what the specification allows";
     if (devices().only_lavapipe) {
@@ -249,7 +221,7 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
                 v.minified ? 100.0 * double(v.minified_bad) / double(v.minified) : 0.0,
                 v.minified ? 100.0 * double(v.outside_envelope_minified) / double(v.minified) : 0.0,
                 devices().only_lavapipe ? "" : " [not lavapipe: envelope only]");
-    if (::testing::Test::HasFailure()) ref::compare_and_report(actual, reference, kOutDir + "/" + name + "_diff.png", options);
+    if (::testing::Test::HasFailure()) ref::compare_and_report(actual, reference, kLab.path(name + "_diff.png"), options);
     return v;
 }
 
@@ -364,12 +336,11 @@ TEST(Lab3Render, MtlTexturePath) {
     // differs from the isotropic reference even where the map is magnified. So: (1) the .mtl
     // scene must render exactly like the same quad with an explicit material naming the same
     // file (default sampler), and (2) that explicit scene with anisotropy 1 must match the reference.
-    fs::create_directories(kOutDir + "/mtl/maps");
-    fs::copy_file(tex("bricks.png"), kOutDir + "/mtl/maps/bricks.png", fs::copy_options::overwrite_existing);
-    std::ofstream(kOutDir + "/mtl/quad.mtl") << "newmtl brick\nKd 1 1 1\nmap_Kd maps\\bricks.png\n";
+    fs::copy_file(tex("bricks.png"), kLab.make_path("mtl/maps/bricks.png"), fs::copy_options::overwrite_existing);
+    kLab.write("mtl/quad.mtl", "newmtl brick\nKd 1 1 1\nmap_Kd maps\\bricks.png\n");
     const std::string obj = "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nvt 0 0\nvt 0.25 0\nvt 0.25 0.25\nvt 0 0.25\nvn 0 1 0\n";
-    std::ofstream(kOutDir + "/mtl/quad.obj") << "mtllib quad.mtl\n" << obj << "usemtl brick\nf 1/1/1 2/2/1 3/3/1 4/4/1\n";
-    std::ofstream(kOutDir + "/mtl/plain.obj") << obj << "f 1/1/1 2/2/1 3/3/1 4/4/1\n";
+    kLab.write("mtl/quad.obj", "mtllib quad.mtl\n" + obj + "usemtl brick\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
+    kLab.write("mtl/plain.obj", obj + "f 1/1/1 2/2/1 3/3/1 4/4/1\n");
     const std::string camera = R"({"position": [0, 2.2, 0.8], "target": [0, 0, 0]})";
     const std::string from_mtl = write_scene("mtl", "{}", R"([{"mesh": ")" + kOutDir + R"(/mtl/quad.obj"}])", camera);
     const lab::Scene scene = lab::load_scene(from_mtl);
@@ -380,7 +351,7 @@ TEST(Lab3Render, MtlTexturePath) {
                                      sampler + "}}",
                            R"([{"mesh": ")" + kOutDir + R"(/mtl/plain.obj", "material": "brick"}])", camera);
     };
-    const std::string a = render(from_mtl, "mtl"), b = render(explicit_scene("mtl_explicit", ""), "mtl_explicit");
+    const std::string a = kLab.render(from_mtl, "mtl"), b = kLab.render(explicit_scene("mtl_explicit", ""), "mtl_explicit");
     ASSERT_FALSE(a.empty() || b.empty());
     EXPECT_TRUE(read_text(a) == read_text(b)) << a << " differs from " << b;
     const Verdict v = expect_matches(explicit_scene("mtl_explicit_aniso_off", ", " + kAnisoOff), "mtl_explicit_aniso_off");
@@ -390,41 +361,24 @@ TEST(Lab3Render, MtlTexturePath) {
 // --- lab 2's scene: lab 3 changes nothing where there are no maps --------------------------------
 
 TEST(Lab3Render, Lab2SceneUnchanged) {
-    const std::string file = kOutDir + "/lab2_scene.json";
-    fs::create_directories(kOutDir);
-    std::string text = read_text(kScenes + "/lab2_lighting.json");
-    text.replace(text.find("\"models/pawn.obj\""), 17, "\"" + kScenes + "/models/pawn.obj\"");
-    std::ofstream(file) << text;
-    const std::string png3 = render(file, "lab2_scene_lab3");
-    const RunResult r2 = run_lab(LAB2_EXE, "--scene " + quoted(file) + " --headless --validate --out " +
-                                               quoted(kOutDir + "/lab2_scene_lab2.png") + " --width 320 --height 180",
-                                 kOutDir + "/lab2_scene_lab2.log");
+    const std::string file = scene_variant(kLab, kScenes + "/lab2_lighting.json", "lab2_scene");  // the pawn's path made absolute
+    const std::string png3 = kLab.render(file, "lab2_scene_lab3");
+    const RenderResult r2 = render_lab(LAB2_EXE, file, kLab.dir(), "lab2_scene_lab2", 320, 180);
     ASSERT_EQ(r2.exit_code, 0) << r2.log;
     ASSERT_FALSE(png3.empty());
-    EXPECT_TRUE(read_text(png3) == read_text(kOutDir + "/lab2_scene_lab2.png")) << "lab 3 draws lab 2's scene differently";
+    EXPECT_TRUE(read_text(png3) == read_text(r2.png)) << "lab 3 draws lab 2's scene differently";
 }
 
 // --- the default scene (anisotropy off, markers off) ------------------------------------------------
 
 // The default scene made absolute (paths), with `edit` applied to every material with maps.
 std::string default_scene_variant(const std::string& name, const std::function<void(json&)>& edit) {
-    json scene = json::parse(read_text(kScenes + "/lab3_textures.json"));
-    scene["lighting"]["markers"] = false;  // the reference does not draw markers
-    for (json& object : scene["objects"]) {
-        const std::string mesh = object["mesh"];
-        if (mesh.size() > 4 && mesh.substr(mesh.size() - 4) == ".obj") object["mesh"] = kScenes + "/" + mesh;
-    }
-    for (auto& [key, material] : scene["materials"].items())
-        for (const char* map : {"albedo_map", "specular_map", "emissive_map"})
-            if (material.contains(map)) {
-                const std::string value = material[map];
-                if (value.rfind("procedural:", 0) != 0) material[map] = kScenes + "/" + value;
+    return scene_variant(kLab, kScenes + "/lab3_textures.json", name, [&](json& scene) {
+        scene["lighting"]["markers"] = false;  // the reference does not draw markers
+        for (auto& [key, material] : scene["materials"].items())
+            if (material.contains("albedo_map") || material.contains("specular_map") || material.contains("emissive_map"))
                 edit(material);
-            }
-    const std::string file = kOutDir + "/" + name + ".json";
-    fs::create_directories(kOutDir);
-    std::ofstream(file) << scene.dump(1);
-    return file;
+    });
 }
 
 TEST(Lab3Render, DefaultSceneAnisotropyOff) {
@@ -464,7 +418,7 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
     std::string table = "| sampler | mean error /255 | 99th percentile /255 |\n|---|---|---|\n";
     for (SamplerRow& row : rows) {
         const std::string name = std::string("truth_") + std::to_string(&row - rows);
-        const std::string png = render(floor_scene(name, row.sampler), name);
+        const std::string png = kLab.render(floor_scene(name, row.sampler), name);
         ASSERT_FALSE(png.empty());
         const lab::Image8 actual = lab::read_png(png);
         std::vector<int> errors;
@@ -485,7 +439,7 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
         table += line;
     }
     std::printf("[ lesson  ] error against the 16x16 supersampled ground truth, floor pixels:\n%s", table.c_str());
-    std::ofstream(kOutDir + "/sampler_errors.md") << table;
+    kLab.write("sampler_errors.md", table);
     EXPECT_LT(rows[6].mean, rows[2].mean) << "anisotropy 16 should be closer to the ground truth than trilinear";
     EXPECT_LT(rows[4].mean, rows[2].mean) << "anisotropy 4 should be closer to the ground truth than trilinear";
     EXPECT_LT(rows[2].mean, rows[0].mean) << "trilinear should be closer to the ground truth than nearest without mipmaps";
@@ -506,7 +460,7 @@ TEST(Lab3Stress, HugeUvsWithRepeat) {
 }
 
 TEST(Lab3Stress, OneByOneTexture) {
-    lab::write_png(kOutDir + "/one.png", lab::Image8{1, 1, {200, 100, 50, 255}});
+    lab::write_png(kLab.make_path("one.png"), lab::Image8{1, 1, {200, 100, 50, 255}});
     expect_matches(plane_scene("one_by_one", R"({"albedo_map": ")" + kOutDir + R"(/one.png", )" + kAnisoOff + "}"), "one_by_one");
 }
 
@@ -518,7 +472,7 @@ TEST(Lab3Stress, Texture16384x1) {
         line.rgba[size_t(x) * 4 + 2] = 128;
         line.rgba[size_t(x) * 4 + 3] = 255;
     }
-    lab::write_png(kOutDir + "/line_16384x1.png", line);
+    lab::write_png(kLab.make_path("line_16384x1.png"), line);
     const Verdict v = expect_matches(plane_scene("line", R"({"albedo_map": ")" + kOutDir + R"(/line_16384x1.png", )" + kAnisoOff + "}"), "line");
     EXPECT_GT(v.minified, 10000u);
 }
@@ -530,7 +484,7 @@ TEST(Lab3Stress, NonPowerOfTwoMipChain) {
     const std::string file = write_scene("npot", R"({"floor": {"albedo_map": ")" + tex("wood.png") +
                                                      R"(", "uv_scale": [20, 20], "sampler": {"anisotropy": 1}}})",
                                          R"([{"mesh": "plane", "material": "floor", "scale": [40, 1, 40]}])", kFloorCamera);
-    const std::string png = render(file, "npot");
+    const std::string png = kLab.render(file, "npot");
     ASSERT_FALSE(png.empty());
     EXPECT_EQ(ref::magenta_pixels(lab::read_png(png)), 0u);
 }
@@ -539,16 +493,16 @@ TEST(Lab3Stress, DegenerateTriangleAndEdgeOnAnisotropy) {
     // A zero-area triangle (collinear corners, UVs all different) next to a textured quad, and a
     // second plane seen exactly edge-on with anisotropy 16: no NaN, no validation message, and
     // the rest of the picture as the reference says.
-    std::ofstream(kOutDir + "/degenerate.obj") << "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nv 0 0 0\nv 0.5 0 0\nv 1 0 0\n"
-                                                  "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.3 0.9\nvn 0 1 0\n"
-                                                  "f 1/1/1 2/2/1 3/3/1 4/4/1\nf 5/1/1 6/3/1 7/5/1\n";
+    kLab.write("degenerate.obj", "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nv 0 0 0\nv 0.5 0 0\nv 1 0 0\n"
+                                 "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.3 0.9\nvn 0 1 0\n"
+                                 "f 1/1/1 2/2/1 3/3/1 4/4/1\nf 5/1/1 6/3/1 7/5/1\n");
     const std::string file =
         write_scene("degenerate", R"({"m": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 1}},
                                       "edge_on": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 16}}})",
                     R"([{"mesh": ")" + kOutDir + R"(/degenerate.obj", "material": "m"},
                         {"mesh": "plane", "material": "edge_on", "position": [0, 0.5, 0], "rotation_deg": [0, 0, 0], "scale": [3, 1, 3]}])",
                     R"({"position": [0, 0.5, 2.5], "target": [0, 0.5, 0]})");
-    const std::string png = render(file, "degenerate");
+    const std::string png = kLab.render(file, "degenerate");
     ASSERT_FALSE(png.empty());
     EXPECT_EQ(ref::magenta_pixels(lab::read_png(png)), 0u);
     const std::string tilted = write_scene("degenerate_ref", R"({"m": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 1}}})",
@@ -561,7 +515,7 @@ TEST(Lab3Stress, DegenerateTriangleAndEdgeOnAnisotropy) {
 class Lab3HostileImage : public ::testing::TestWithParam<std::pair<std::string, std::string>> {};
 TEST_P(Lab3HostileImage, WarningCheckerboardExitZero) {
     const auto& [file_name, reason] = GetParam();
-    const std::string dir = kOutDir + "/hostile", path = dir + "/" + file_name;
+    const std::string dir = kLab.path("hostile"), path = dir + "/" + file_name;
     fs::create_directories(dir);
     std::error_code ec;
     fs::remove_all(path, ec);
@@ -580,7 +534,7 @@ TEST_P(Lab3HostileImage, WarningCheckerboardExitZero) {
     std::string text = read_text(scene);
     text.replace(text.find(R"("nan_check": "on")"), 17, R"("nan_check": "off")");  // magenta is expected here
     std::ofstream(scene) << text;
-    const RunResult r = run(scene, "hostile_check_" + file_name);
+    const RenderResult r = kLab.run(scene, "hostile_check_" + file_name);
     EXPECT_EQ(r.exit_code, 0) << r.log;
     EXPECT_NE(r.log.find("warning: " + path + ": " + reason), std::string::npos) << r.log;
     size_t warnings = 0;
@@ -599,10 +553,10 @@ INSTANTIATE_TEST_SUITE_P(Files, Lab3HostileImage,
 
 TEST(Lab3BadInput, UnknownProceduralIsExit2) {
     const std::string scene = plane_scene("bad_procedural", R"({"albedo_map": "procedural:marble"})");
-    const RunResult r = run(scene, "bad_procedural");
+    const RenderResult r = kLab.run(scene, "bad_procedural");
     EXPECT_EQ(r.exit_code, 2) << r.log;
     EXPECT_NE(r.log.find(scene + ": materials.m.albedo_map: unknown procedural texture 'marble'"), std::string::npos) << r.log;
-    EXPECT_FALSE(fs::exists(kOutDir + "/bad_procedural.png"));
+    EXPECT_FALSE(r.wrote_png);
 }
 
 TEST(Lab3Render, SharedImagesAndIdenticalSamplersAreUploadedOnce) {
@@ -613,7 +567,7 @@ TEST(Lab3Render, SharedImagesAndIdenticalSamplersAreUploadedOnce) {
                        R"(", "albedo": [0.5, 0.5, 1]}, "c": {"albedo_map": "procedural:checker", "sampler": {"filter": "nearest"}}})",
         R"([{"mesh": "cube", "material": "a", "position": [-1, 0, 0]}, {"mesh": "cube", "material": "b"},
             {"mesh": "cube", "material": "c", "position": [1, 0, 0]}])");
-    const RunResult r = run(scene, "sharing");
+    const RenderResult r = kLab.run(scene, "sharing");
     EXPECT_EQ(r.exit_code, 0) << r.log;
     EXPECT_NE(r.log.find("textures: 2 images, 2 samplers for 3 materials with maps"), std::string::npos) << r.log;
 }

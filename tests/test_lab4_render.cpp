@@ -12,29 +12,24 @@
 // The band k is the default kernel's radius plus one texel (docs/testing.md): k = 1 for the default
 // 1×1 kernel; the contact test uses the 2 px. Every scene's shadow texels are smaller than
 // its pixels.
-#include "reference/cpu_reference.h"
 #include "reference/cpu_shadow.h"
-#include "reference/image_compare.h"
 #include "image_io.h"
-#include "lab_runner.h"
+#include "lab_render.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <set>
 #include <string>
 
 namespace {
 
-namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/lab4";
 constexpr int kWidth = 320, kHeight = 180;
+const LabUnderTest kLab(LAB4_EXE, "lab4", kWidth, kHeight);  // writes into test_output/lab4/
 // k = (N − 1)/2 + 1 for the default N×N kernel (the tests use the default shadow settings).
 const int kBand = (lab::ShadowDesc{}.pcf - 1) / 2 + 1;
 
@@ -72,24 +67,7 @@ json point(std::vector<double> position) {
     return {{"type", "point"}, {"position", position}, {"cast_shadows", true}};
 }
 
-std::string write_scene(const std::string& name, const json& scene) {
-    fs::create_directories(kOutDir);
-    const std::string file = kOutDir + "/" + name + ".json";
-    std::ofstream(file) << scene.dump(1);
-    return file;
-}
-
 // --- running the lab ----------------------------------------------------------------------------
-
-RunResult run(const std::string& scene_file, const std::string& name, int w = kWidth, int h = kHeight) {
-    const std::string png = kOutDir + "/" + name + ".png";
-    std::error_code ec;
-    fs::remove(png, ec);
-    return run_lab(LAB4_EXE,
-                   "--scene " + quoted(scene_file) + " --headless --validate --out " + quoted(png) + " --width " +
-                       std::to_string(w) + " --height " + std::to_string(h),
-                   kOutDir + "/" + name + ".log");
-}
 
 // Renders `scene` with the lab (exit 0, validation clean, no NaN) and the reference.
 struct Judged {
@@ -101,11 +79,9 @@ struct Judged {
 
 Judged judge(const std::string& name, const json& scene, int band = kBand) {
     Judged j;
-    const std::string file = write_scene(name, scene);
-    const RunResult r = run(file, name);
-    EXPECT_EQ(r.exit_code, 0) << "lab4_shadows failed on " << file << ":\n" << r.log;
-    const std::string png = kOutDir + "/" + name + ".png";
-    if (r.exit_code != 0 || !fs::exists(png)) return j;
+    const std::string file = kLab.write_scene(name, scene.dump(1));
+    const std::string png = kLab.render(file, name);
+    if (png.empty()) return j;
     j.actual = lab::read_png(png);
     EXPECT_EQ(ref::magenta_pixels(j.actual), 0u) << "NaN/Inf in " << png;
     const lab::Scene s = lab::load_scene(file);
@@ -117,14 +93,14 @@ Judged judge(const std::string& name, const json& scene, int band = kBand) {
     options.band = band;
     j.metric = ref::shadow_metric(j.actual, j.shadowed, j.unshadowed, j.unlit, options);
     // For a failure: expected | actual | the metric's picture.
-    lab::write_png(kOutDir + "/" + name + "_expected.png", j.shadowed);
-    lab::write_png(kOutDir + "/" + name + "_metric.png", ref::shadow_metric_picture(j.shadowed, j.metric));
+    lab::write_png(kLab.path(name + "_expected.png"), j.shadowed);
+    lab::write_png(kLab.path(name + "_metric.png"), ref::shadow_metric_picture(j.shadowed, j.metric));
     j.ok = true;
     return j;
 }
 
 std::string describe(const Judged& j, const std::string& name) {
-    return j.metric.line() + "\n  see " + kOutDir + "/" + name + "{.png,_expected.png,_metric.png}";
+    return j.metric.line() + "\n  see " + kLab.path(name) + "{.png,_expected.png,_metric.png}";
 }
 
 // Pixels deep inside a shadow of the reference: the opaque surface is `object`, no translucent
@@ -434,11 +410,8 @@ TEST(Lab4Shadows, PointLightCubeSeamsShowNoCracks) {
 // --- stress: exit 0, no validation message, no NaN, a picture -------------------------------------
 
 void expect_survives(const std::string& name, const json& scene, int w = 160, int h = 90) {
-    const std::string file = write_scene(name, scene);
-    const RunResult r = run(file, name, w, h);
-    EXPECT_EQ(r.exit_code, 0) << name << ":\n" << r.log;
-    const std::string png = kOutDir + "/" + name + ".png";
-    if (r.exit_code != 0 || !fs::exists(png)) return;
+    const std::string png = kLab.render(kLab.write_scene(name, scene.dump(1)), name, w, h);
+    if (png.empty()) return;
     const lab::Image8 image = lab::read_png(png);
     EXPECT_EQ(ref::magenta_pixels(image), 0u) << "NaN/Inf in " << png;
     int brightest = 0;

@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kOutDir = std::string(LAB_BINARY_DIR) + "/test_output/vulkan_correctness";
+const std::string kOutDir = test_output_dir("vulkan_correctness");
 
 struct LabExe {
     const char* name;
@@ -33,26 +33,11 @@ const LabExe kLabs[] = {{"lab1_camera", LAB1_EXE}, {"lab2_lighting", LAB2_EXE}};
 
 bool has_xvfb_run() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
-// Runs `lab` with `args`; stdout + stderr in the log. In a window, under xvfb-run: the lab's own
-// exit code is written to a file (xvfb-run's exit code and messages about its own clean-up are not
-// the lab's).
+// Runs `lab` with `args` (lab_runner.h), the log in test_output/vulkan_correctness/LAB_NAME.log; in
+// a window under xvfb-run, judged by the lab's own exit code.
 RunResult run_case(const LabExe& lab, const std::string& args, const std::string& name, bool window = false) {
-    const std::string base = kOutDir + "/" + lab.name + "_" + name;
-    const std::string log = base + ".log", code_file = base + ".exit";
-    fs::create_directories(kOutDir);
-    std::error_code ec;
-    fs::remove(code_file, ec);
-    const std::string lab_command = quoted(lab.path) + " " + args + " > " + quoted(log) +
-                                    " 2>&1; echo $? > " + quoted(code_file);
-    const std::string command = window ? "xvfb-run -a -s '-screen 0 1280x800x24' sh -c " + quoted(lab_command) +
-                                             " > " + quoted(base + ".xvfb.log") + " 2>&1"
-                                       : lab_command;
-    std::system(command.c_str());
-    RunResult r;
-    const std::string code = read_text(code_file);
-    if (!code.empty()) r.exit_code = std::stoi(code);
-    r.log = read_text(log);
-    return r;
+    const std::string log = kOutDir + "/" + lab.name + "_" + name + ".log";
+    return window ? run_lab_in_window(lab.path, args, log) : run_lab(lab.path, args, log);
 }
 
 bool mentions_validation(const std::string& log) { return log.find("validation") != std::string::npos; }
