@@ -109,5 +109,5 @@ private:
     std::unique_ptr<ShadowMaps> shadow_maps_;
     std::vector<lab::Buffer> shadows_;  // [frame slot] GpuShadows
     std::vector<const DrawItem*> opaque_, translucent_;  // this frame's draw order
-    lab::DepthView shadow_view_;  // UI only: common/depth_view.h
+    lab::DepthView shadow_view_;  // UI only: common/app/depth_view.h
 };

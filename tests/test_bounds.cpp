@@ -1,4 +1,4 @@
-// test_bounds.cpp — common/bounds.h: boxes around meshes, moved by transforms, grown, against a
+// test_bounds.cpp — common/content/bounds.h: boxes around meshes, moved by transforms, grown, against a
 // cone; every expected value worked out by hand.
 #include "bounds.h"
 

@@ -1,5 +1,5 @@
 // Tests for the shared command line (common/app/cli.cpp, dev_options.cpp) and PNG input/output
-// (common/image_io.cpp).
+// (common/content/image_io.cpp).
 #include "cli.h"
 #include "image_io.h"
 #include "temp_dir.h"

@@ -1,4 +1,4 @@
-// test_memory.cpp — the sub-allocator (common/memory.h) on a real device, validation on.
+// test_memory.cpp — the sub-allocator (common/vulkan/memory.h) on a real device, validation on.
 //
 // Ranges are aligned and disjoint, small resources share one block, a large one gets its own,
 // freed ranges are reused, and every block is given back once its last range is freed (so memory

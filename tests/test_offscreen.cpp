@@ -1,4 +1,4 @@
-// test_offscreen.cpp — common/offscreen.h's layered render targets and common/depth_view.h on a
+// test_offscreen.cpp — common/vulkan/offscreen.h's layered render targets and common/app/depth_view.h on a
 // real device, validation on: each layer of a cube target cleared to its own depth, shown by the
 // depth view, read back at the squares' centres (positions and greys worked out by hand).
 #include "depth_view.h"

@@ -1,4 +1,4 @@
-// The render-on-demand rule (common/redraw_policy.h): which loop iterations draw a frame.
+// The render-on-demand rule (common/app/redraw_policy.h): which loop iterations draw a frame.
 #include "redraw_policy.h"
 
 #include <gtest/gtest.h>

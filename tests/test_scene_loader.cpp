@@ -1,4 +1,4 @@
-// Tests for the scene loader (common/scene.cpp, format in docs/scene-format.md).
+// Tests for the scene loader (common/content/scene.cpp, format in docs/scene-format.md).
 //
 // Every rejected input must produce one line "FILE: JSON.PATH: reason"; the
 // bad-input tests check the file label, the exact path and a word of the reason.

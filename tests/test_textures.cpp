@@ -3,7 +3,7 @@
 //  * .mtl maps (map_Kd / map_Ks / map_Ke, backslash paths) becoming material maps;
 //  * common/texture_image: procedural sources from their formulas, hostile files → warning +
 //    checkerboard, size limits checked before decoding;
-//  * the lab's CPU mip fallback (common/texture.cpp) against the hand-computed 2×2 box;
+//  * the lab's CPU mip fallback (common/vulkan/texture.cpp) against the hand-computed 2×2 box;
 //  * tests/reference/cpu_texture: wrap modes, nearest/bilinear/trilinear and the LOD, against
 //    texel values computed by hand from the Vulkan specification's formulas.
 #include "reference/cpu_reference.h"

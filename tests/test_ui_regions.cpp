@@ -1,4 +1,4 @@
-// Which UI pixels are copied and which are blended (common/ui_regions.h), checked against real
+// Which UI pixels are copied and which are blended (common/app/ui_regions.h), checked against real
 // ImGui draw data and pixel by pixel: the copied pixels are exactly the opaque panels, no pixel is
 // copied or blended twice, and nothing translucent is ever copied.
 #include "ui_regions.h"

@@ -6,7 +6,7 @@
 # common/dev/status_file.h). Checks:
 #   1. an idle window stops drawing: at most 2 frames in an idle second;
 #   2. input wakes it: pointer motion draws new frames; the UI still reacts although its panels
-#      are drawn from a cache (common/imgui_renderer.h): a hovered checkbox changes, and looks as
+#      are drawn from a cache (common/app/imgui_renderer.h): a hovered checkbox changes, and looks as
 #      before once the pointer leaves;
 #   3. a held key draws continuously (the camera moves every frame), and it idles again after;
 #   4. closing the window ends the run with exit code 0 (no validation message).
@@ -109,7 +109,7 @@ echo "hover: checkbox $plain -> $hovered -> $(checkbox)"
 
 # 3. A held key (W: forward) draws every frame while held, and the window idles again after the
 #    release. The press itself is an event: it draws a frame and the settle frames after it
-#    (kSettleFrames = 3 in common/redraw_policy.h), then a lab that drew only on events would stop.
+#    (kSettleFrames = 3 in common/app/redraw_policy.h), then a lab that drew only on events would stop.
 #    So the frames are counted after twice that burst (8 frames after the press): while the key
 #    is still held, 3 more must come. Counted in frames, not in a fixed time, so that a slow frame
 #    (lab 3's anisotropic floor with validation on a loaded machine: under 1.5 frames a second)
