@@ -1,5 +1,6 @@
-// Tests for common/mesh.cpp: the built-in primitives and the OBJ loader
-// (dimensions, UV layouts and error rules in docs/meshes.md).
+// Tests for common/content/: the built-in primitives (primitives.cpp), the OBJ loader
+// (obj_model.cpp, with the line checks of obj_text.cpp) and make_mesh (mesh.cpp);
+// dimensions, UV layouts and error rules are in docs/meshes.md.
 //
 // Primitive invariants: valid indices, unit normals, unit tangents ⟂ normals,
 // UVs in [0,1], counter-clockwise winding that agrees with the normals, closed
