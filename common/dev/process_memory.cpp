@@ -1,5 +1,7 @@
 #include "process_memory.h"
 
+#include <cstdlib>  // first: a C library header defines __GLIBC__ (without one, both calls vanish)
+
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
