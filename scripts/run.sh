@@ -6,11 +6,22 @@
 #   bash scripts/run.sh                     # the newest lab
 #   bash scripts/run.sh lab1                # lab 1 (also: 1, lab1_camera)
 #   bash scripts/run.sh 2 --scene scenes/lab2_one_light.json --validate
+#   bash scripts/run.sh site [OUT]          # the course site (scripts/make_site.sh) into OUT (build/site)
 #
 # Everything after the lab goes to the lab unchanged (see `--help` of any lab).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
+
+# The course site: packages and site/node_modules (no C++ build needed), the site, where to open it.
+if [ "${1:-}" = site ]; then
+  out="$(realpath -m "${2:-$root/build/site}")"
+  bash "$root/scripts/setup.sh" --no-build
+  bash "$root/scripts/make_site.sh" "$out"
+  echo "run: open file://$out/index.html in a browser (it needs no network),"
+  echo "run: or serve it: python3 -m http.server --directory $out 8000   (then http://localhost:8000/)"
+  exit 0
+fi
 
 # The labs of this checkout, in order: folders lab<N>_<name>/ with a CMakeLists.txt.
 mapfile -t labs < <(cd "$root" && for d in lab[0-9]*_*; do [ -f "$d/CMakeLists.txt" ] && echo "$d"; done | sort -V)

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # setup.sh — install the Debian 12 packages the labs need, configure and build.
 #
-#   bash scripts/setup.sh            # packages (only if missing) + configure + build
+#   bash scripts/setup.sh            # packages (only if missing) + site/node_modules + configure + build
+#   bash scripts/setup.sh --no-build # packages and site/node_modules only (scripts/run.sh site)
 #   LAB_BUILD_DIR=build-asan LAB_CMAKE_ARGS=-DLAB_SANITIZE=ON bash scripts/setup.sh
 #
-# Idempotent: apt-get runs only when a package is missing. Uses sudo when not root.
+# Idempotent: apt-get runs only when a package is missing, `npm ci` only when site/node_modules is
+# missing or older than site/package-lock.json. Uses sudo when not root.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
+no_build=0
+[ "${1:-}" = --no-build ] && no_build=1
 
 packages=(
   build-essential cmake pkg-config
@@ -21,7 +25,11 @@ packages=(
   openbox x11-utils            # the window soak (bench/soak.py): a window manager, xprop
   graphviz                     # docs/architecture.md's picture of the layers (scripts/make_architecture.sh)
   python3-matplotlib python3-numpy  # bench/tradeoff.py: time-against-error plots
+  chromium                     # the course site's browser test (site/check.mjs, CTest site_browser)
 )
+# Node.js and npm build the course site (scripts/make_site.sh): Debian's, unless a node and an npm
+# are already installed (another nodejs package, such as NodeSource's, conflicts with Debian's npm).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -37,6 +45,19 @@ if ((${#missing[@]})); then
 else
   echo "setup: all ${#packages[@]} packages present"
 fi
+
+# The site's JavaScript tools, exactly as site/package-lock.json pins them. Without the npm registry
+# this fails: one line says so, the rest goes on, and the site test (site_browser) skips saying why.
+site="$root/site"
+if [ ! -f "$site/node_modules/.package-lock.json" ] || [ "$site/package-lock.json" -nt "$site/node_modules/.package-lock.json" ]; then
+  if npm_log=$(cd "$site" && npm ci --no-audit --no-fund 2>&1); then
+    echo "setup: site/node_modules installed (npm ci)"
+  else
+    rm -rf "$site/node_modules"  # nothing half-installed: the site test then skips, saying why
+    echo "setup: npm ci in site/ failed ($( (grep -m 1 -iE 'npm (err|error)' <<<"$npm_log" || tail -n 1 <<<"$npm_log") | cut -c 1-160)): no course site; site_browser will skip"
+  fi
+fi
+((no_build)) && exit 0
 
 # shellcheck disable=SC2086
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo ${LAB_CMAKE_ARGS:-} >/dev/null
