@@ -1,5 +1,7 @@
-// The render-on-demand rule (common/app/redraw_policy.h): which loop iterations draw a frame.
+// The render-on-demand rule (common/app/redraw_policy.h): which loop iterations draw a frame; and the
+// frame time the panels show (common/app/recent_frames.h).
 #include "redraw_policy.h"
+#include "recent_frames.h"
 
 #include <gtest/gtest.h>
 
@@ -62,4 +64,27 @@ TEST(RedrawPolicy, ARequestDrawsWithoutAnEvent) {
     EXPECT_TRUE(policy.should_draw(request));
     EXPECT_FALSE(policy.may_sleep());
     EXPECT_EQ(1 + drawn(policy, {}, 100), RedrawPolicy::kSettleFrames);
+}
+
+// --- the frame time the panels show (common/app/recent_frames.h) ---------------------------
+
+TEST(RecentFrames, MedianOfTheLastFramesForgetsOneSlowFrame) {
+    lab::RecentFrames recent;
+    EXPECT_EQ(recent.median(), 0.0f);  // nothing drawn yet
+    recent.add(8000.0f);               // a frame that compiled shaders
+    EXPECT_EQ(recent.median(), 8000.0f);
+    recent.add(5.0f);
+    recent.add(6.0f);
+    EXPECT_EQ(recent.median(), 6.0f);  // {5, 6, 8000}: the slow frame no longer shows
+    for (int i = 0; i < 20; ++i) recent.add(4.0f);
+    EXPECT_EQ(recent.median(), 4.0f);  // only the last kFrames count
+}
+
+TEST(RecentFrames, FollowsARealChangeWithinHalfTheWindow) {
+    lab::RecentFrames recent;
+    for (size_t i = 0; i < lab::RecentFrames::kFrames; ++i) recent.add(10.0f);
+    for (size_t i = 0; i < lab::RecentFrames::kFrames / 2; ++i) recent.add(30.0f);
+    EXPECT_EQ(recent.median(), 10.0f);  // 7 of 15 slower: not yet
+    recent.add(30.0f);
+    EXPECT_EQ(recent.median(), 30.0f);  // 8 of 15: the median moves
 }

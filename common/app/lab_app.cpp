@@ -172,7 +172,7 @@ void LabApp::run_window(const Callbacks& lab_callbacks) {
         if (!policy.should_draw(in)) continue;
         if (!draw_window_frame(target, cb, std::chrono::duration<float>(woke - last_ui).count())) continue;
         last_ui = woke;
-        show_frame_time(woke);
+        if (drawn > 0) show_frame_time(woke);  // the first frame compiles the shaders: not a frame time
         dev_->frame_drawn(target, target.extent(), ui_->redraw_count());
         ++drawn;
         if (measured && drawn >= to_draw) break;  // --frames N: screenshots, tests
@@ -187,9 +187,9 @@ void LabApp::run_window(const Callbacks& lab_callbacks) {
 // The frame's cost from waking up to presenting (not the time asleep before it), for the panel.
 void LabApp::show_frame_time(Clock::time_point woke) {
     const float work_ms = float(1000.0 * seconds_since(woke));
-    average_frame_ms_ = average_frame_ms_ == 0.0f ? work_ms : 0.95f * average_frame_ms_ + 0.05f * work_ms;
+    recent_frames_.add(work_ms);
     if (shown_frame_ms_ == 0.0f || woke - shown_at_ >= std::chrono::milliseconds(500)) {
-        shown_frame_ms_ = average_frame_ms_;
+        shown_frame_ms_ = recent_frames_.median();
         shown_at_ = woke;
     }
 }

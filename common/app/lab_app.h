@@ -15,6 +15,7 @@
 
 #include "cli.h"
 #include "imgui_layer.h"
+#include "recent_frames.h"
 #include "render_target.h"
 #include "scene.h"
 #include "vk_context.h"
@@ -104,8 +105,8 @@ private:
     MouseInput mouse_;
     glm::dvec2 last_cursor_{0.0};
     bool have_cursor_ = false;
-    float average_frame_ms_ = 0.0f;
-    float shown_frame_ms_ = 0.0f;  // average_frame_ms_ when last shown
+    RecentFrames recent_frames_;   // the work of the last frames drawn
+    float shown_frame_ms_ = 0.0f;  // their median when last shown
     std::chrono::steady_clock::time_point shown_at_{};
     bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
     bool redraw_requested_ = false;
