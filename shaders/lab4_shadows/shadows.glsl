@@ -47,8 +47,11 @@ layout(set = 0, binding = 9) uniform samplerCube cube_translucency[4];
 // One tap's light: 1 or 0 from the depth compare, times the translucent casters' transmittance
 // when the point lies behind the nearest of them by more than `tolerance` (in depth, see above).
 float tap(float lit, bool translucent, vec2 transmittance, float ref, float tolerance) {
+    // EXERCISE translucent_tap: when does the light pass through the translucent casters before reaching P, and how much of it is left (what do r and g of the transmittance map hold)? Wrong: a glass object casts no shadow, or shadows itself. Checked by Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply.
+    // STUB: return lit;  // translucent casters let all the light through
     if (translucent && ref > transmittance.g + tolerance) lit *= transmittance.r;
     return lit;
+    // END EXERCISE
 }
 
 // Directional and spot lights: P projected into the map; PCF averages N×N taps one texel apart.
@@ -104,9 +107,12 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
 // The cube map's depth of P for the face that direction d falls in: that face's axis is d's
 // largest coordinate, P's distance along it gives the perspective depth the pass stored.
 float cube_depth_of(vec3 v, vec3 d, ShadowSlot s) {
+    // EXERCISE cube_face_depth: which face does d fall in, how far is P along that face's axis, and what depth did that face's perspective projection store for that distance (the comment on params in ShadowSlot)? Wrong: point lights cast no shadow, or only on one face. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
+    // STUB: return 0.0;  // everything in front of every caster: no shadow
     const vec3 a = abs(d);
     const float z = a.x >= a.y && a.x >= a.z ? abs(v.x) : (a.y >= a.z ? abs(v.y) : abs(v.z));
     return s.params.y - s.params.z / max(z, 1e-30);
+    // END EXERCISE
 }
 
 // Point lights: the direction from the light to P picks the face and texel. PCF taps step one
