@@ -216,7 +216,7 @@ TEST(Cli, HelpDevListsEveryDeveloperOptionAndHelpDoesNot) {
     EXPECT_TRUE(parse({"--width", "x", "--help-dev"}).help_dev);  // wins over mistakes, as --help does
     const std::string dev = lab::dev_usage("lab4_shadows");
     const std::string students = lab::usage("lab4_shadows");
-    for (const lab::DevOptionSpec& spec : lab::dev_option_specs()) {
+    for (const lab::OptionSpec& spec : lab::dev_option_specs()) {
         EXPECT_CONTAINS(dev, std::string("--") + spec.name);
         EXPECT_EQ(students.find(spec.name), std::string::npos) << spec.name << " is in the students' --help";
     }

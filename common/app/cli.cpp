@@ -23,8 +23,6 @@ constexpr long long kMaxImageSide = 65536;
 
 std::string lower(const std::string& s) { return to_lower(s); }
 
-using OptionSpec = DevOptionSpec;
-
 // The students' options, then the developer ones (dev_options.h).
 const std::vector<OptionSpec>& option_specs() {
     static const std::vector<OptionSpec> specs = [] {

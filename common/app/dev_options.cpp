@@ -4,8 +4,8 @@
 
 namespace lab {
 
-const std::vector<DevOptionSpec>& dev_option_specs() {
-    static const std::vector<DevOptionSpec> specs = {
+const std::vector<OptionSpec>& dev_option_specs() {
+    static const std::vector<OptionSpec> specs = {
         {"dev-status-file", true}, {"dev-fail-after-submit", true}, {"dev-validation-probe", false},
         {"dev-no-blit", false},    {"dev-shader-dir", true},        {"dev-scene-dir", true},
         {"dev-animate-lights", false}, {"dev-shadow-view", true},

@@ -20,11 +20,12 @@ struct DevOptions {
     int shadow_view = -1;           // --dev-shadow-view N: lab 4 shows light N's shadow map (-1: none)
 };
 
-struct DevOptionSpec {
+// One option of the command line (cli.cpp lists the students' ones, this file the developer ones).
+struct OptionSpec {
     const char* name;  // without the leading "--"
     bool takes_value;
 };
-const std::vector<DevOptionSpec>& dev_option_specs();
+const std::vector<OptionSpec>& dev_option_specs();
 
 // Sets the option `name` (one of dev_option_specs()) from `value`; throws CliError for a bad value.
 void set_dev_option(DevOptions& dev, const std::string& name, const std::string& value);

@@ -14,10 +14,6 @@ double percentile(std::vector<double> values, double p) {
     return values[std::min(rank, values.size() - 1)];
 }
 
-double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
 }  // namespace
 
 Benchmark::Benchmark(int frames) : frames_(std::max(frames, 0)), last_done_(Clock::now()) {
@@ -27,7 +23,7 @@ Benchmark::Benchmark(int frames) : frames_(std::max(frames, 0)), last_done_(Cloc
 bool Benchmark::frame_finished(int index) {
     if (!on()) return false;
     const auto done = Clock::now();
-    if (index > kWarmupFrames - 1 && index > 0) frame_ms_.push_back(ms_between(last_done_, done));
+    if (index >= kWarmupFrames) frame_ms_.push_back(ms_between(last_done_, done));
     last_done_ = done;
     return index == kWarmupFrames - 1;
 }

@@ -14,6 +14,11 @@
 
 namespace lab::dev {
 
+// Milliseconds from `a` to `b` (the dev layer's clock arithmetic).
+inline double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
 class Benchmark {
 public:
     static constexpr int kWarmupFrames = 3;

@@ -1,13 +1,10 @@
 #include "frame_phases.h"
 
+#include "benchmark.h"  // ms_between
+
 #include <cstdio>
 
 namespace lab::dev {
-namespace {
-double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
-}  // namespace
 
 // The loop's target with a clock around it: a frame starts at begin_frame(); it has its frame slot
 // and image when the commands before the pass begin; end_frame() is submit and present.
