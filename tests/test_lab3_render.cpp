@@ -519,8 +519,11 @@ TEST_P(Lab3HostileImage, WarningCheckerboardExitZero) {
     fs::create_directories(dir);
     std::error_code ec;
     fs::remove_all(path, ec);
-    lab::write_png(dir + "/good.png", lab::Image8{4, 4, std::vector<uint8_t>(64, 200)});
-    const std::string good = read_text(dir + "/good.png");
+    // A good PNG to break, one per case: CTest runs the cases in parallel, and a shared file was
+    // rewritten by one case while another read it.
+    const std::string good_png = dir + "/good_" + file_name;
+    lab::write_png(good_png, lab::Image8{4, 4, std::vector<uint8_t>(64, 200)});
+    const std::string good = read_text(good_png);
     if (file_name == "truncated.png") std::ofstream(path) << good.substr(0, good.size() / 2);
     if (file_name == "magic.png") std::ofstream(path) << "this is text, not a picture";
     if (file_name == "empty.png") std::ofstream(path) << "";
