@@ -9,6 +9,7 @@
 #include "pipeline_builder.h"
 #include "render_target.h"
 #include "scene.h"
+#include "sampler_cache.h"
 #include "texture.h"
 
 #include <glm/glm.hpp>
@@ -83,10 +84,10 @@ private:
     std::map<Variant, lab::PipelineBuilder::Result> lit_pipelines_;  // [specialization constants]
     // Lab 3: textures. Each map image loaded and uploaded once; per material with maps one
     // descriptor set (set 1), written once; materials without maps bind nothing.
-    lab::SamplerCache samplers_;
-    using TextureKey = std::pair<std::string, lab::TexelEncoding>;  // a map, as colour or as data
-    std::map<TextureKey, lab::Texture> textures_;
-    lab::Texture white_;                            // stands in for a map a textured material lacks
+    SamplerCache samplers_;
+    using TextureKey = std::pair<std::string, TexelEncoding>;  // a map, as colour or as data
+    std::map<TextureKey, Texture> textures_;
+    Texture white_;  // stands in for a map a textured material lacks
     lab::Handle<VkDescriptorSetLayout> texture_layout_;
     lab::Handle<VkDescriptorPool> texture_pool_;
     std::vector<VkDescriptorSet> material_sets_;       // [material]; VK_NULL_HANDLE: no maps

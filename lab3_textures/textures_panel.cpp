@@ -1,29 +1,21 @@
 #include "textures_panel.h"
 
+#include "ui_widgets.h"
+
 #include <imgui.h>
 
 #include <algorithm>
-#include <cstdio>
 
 namespace {
 const char* const kFilters[] = {"nearest", "linear"};
 const char* const kMipmaps[] = {"none", "nearest", "linear"};
 const char* const kWraps[] = {"repeat", "clamp", "mirror"};
 
-template <typename Enum>
-bool enum_combo(const char* label, Enum& value, const char* const* items, int count) {
-    int v = int(value);
-    if (!ImGui::Combo(label, &v, items, count)) return false;
-    value = Enum(v);
-    return true;
-}
-
 // A map path or "procedural:NAME"; Enter applies it, an empty field removes the map.
 bool edit_map(const char* label, std::string& map) {
-    char text[512];
-    std::snprintf(text, sizeof text, "%s", map.c_str());
-    if (!ImGui::InputText(label, text, sizeof text, ImGuiInputTextFlags_EnterReturnsTrue)) return false;
-    const std::string value = text, prefix = "procedural:";
+    std::string value = map;
+    if (!lab::ui::edit_on_enter(label, value)) return false;
+    const std::string prefix = "procedural:";
     const auto& names = lab::procedural_texture_names();
     if (value.rfind(prefix, 0) == 0 &&
         std::find(names.begin(), names.end(), value.substr(prefix.size())) == names.end())
@@ -51,10 +43,10 @@ bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, float
             ImGui::DragFloat("emissive strength", &m.emissive_strength, 0.01f, 0.0f, 100.0f);
             ImGui::DragFloat2("uv scale", &m.uv_scale.x, 0.01f);
             ImGui::DragFloat2("uv offset", &m.uv_offset.x, 0.01f);
-            rebuild |= enum_combo("filter", m.sampler.filter, kFilters, 2);
-            rebuild |= enum_combo("mipmaps", m.sampler.mipmaps, kMipmaps, 3);
+            rebuild |= lab::ui::enum_combo("filter", m.sampler.filter, kFilters, 2);
+            rebuild |= lab::ui::enum_combo("mipmaps", m.sampler.mipmaps, kMipmaps, 3);
             rebuild |= ImGui::SliderInt("anisotropy", &m.sampler.anisotropy, 1, 16);
-            rebuild |= enum_combo("wrap", m.sampler.wrap, kWraps, 3);
+            rebuild |= lab::ui::enum_combo("wrap", m.sampler.wrap, kWraps, 3);
             rebuild |= ImGui::Checkbox("distorted sampling (albedo)", &m.distorted);
             if (m.distorted) {
                 ImGui::DragFloat2("amplitude", &m.distortion.amplitude.x, 0.001f, -1.0f, 1.0f);

@@ -5,8 +5,9 @@
 // pass, which reads it with PCF; translucent objects blend over the others and let
 // 1 − opacity of the light through. The "Shadows" panel edits it all live, shows a light's
 // map and animates the lights (--dev-animate-lights does that headless, for
-// --benchmark). Everything else (Vulkan, window, UI, scene file, image
-// loading, texture upload, samplers) comes from common/.
+// --benchmark). The Vulkan half is here too: the shadow pass's render pass, images and
+// comparison sampler in offscreen.cpp, its pipelines in shadow_maps.cpp. The rest (the
+// Vulkan context, window, UI, scene file, image loading) comes from common/.
 //
 // Controls: W/S forward/back, A/D strafe, Space/Shift up/down (world Y),
 // left-drag rotates (Look-At: orbits the target), wheel changes the distance

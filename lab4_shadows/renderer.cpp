@@ -2,6 +2,7 @@
 
 #include "mesh.h"
 #include "shader.h"
+#include "texture_image.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -35,7 +36,7 @@ void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
 Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
                    const Lighting& lighting, const std::string& shader_dir)
     : vk_(vk), render_pass_(target.render_pass()), samplers_(vk),
-      shadow_view_(vk, target.render_pass(), 6 * kMaxShadowLights) {
+      shadow_view_(vk, target.render_pass(), 6 * kMaxShadowLights, shader_dir) {
     // Geometry: upload each distinct mesh once, remember what to draw.
     lab::MeshLibrary library;  // reads each model file once
     std::vector<Caster> casters;  // lab 4: what the shadow maps draw
@@ -111,7 +112,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
 // specular map is data, a factor in [0, 1] (UNORM: byte / 255, see docs/lighting.md). A bad file
 // becomes the checkerboard and one warning line.
 void Renderer::load_textures(const Lighting& lighting) {
-    using Encoding = lab::TexelEncoding;
+    using Encoding = TexelEncoding;
     const Encoding encodings[3] = {Encoding::Srgb, Encoding::Linear, Encoding::Srgb};  // albedo, specular, emissive
     std::map<TextureKey, bool> mipmaps;  // [map, encoding]: does any material want its mip chain?
     uint32_t textured = 0;
@@ -125,10 +126,10 @@ void Renderer::load_textures(const Lighting& lighting) {
         const lab::TextureLoad load = lab::load_texture_image(key.first, int(vk_.properties().limits.maxImageDimension2D));
         if (!load.warning.empty()) warnings_.push_back(load.warning);
         if (!load.warning.empty()) std::fprintf(stderr, "warning: %s\n", load.warning.c_str());
-        textures_.emplace(key, lab::upload_texture(vk_, load.image, mips, lab::MipSource::Auto, key.second));
+        textures_.emplace(key, upload_texture(vk_, load.image, mips, MipSource::Auto, key.second));
     }
     if (textured > 0) {
-        white_ = lab::upload_texture(vk_, lab::Image8{1, 1, {255, 255, 255, 255}}, false);
+        white_ = upload_texture(vk_, lab::Image8{1, 1, {255, 255, 255, 255}}, false);
         const std::vector<lab::DescriptorBinding> maps(3, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT});
         texture_layout_ = lab::make_descriptor_set_layout(vk_, maps);
         texture_pool_ = lab::make_descriptor_pool(vk_, maps, textured);

@@ -11,6 +11,7 @@
 #include "render_target.h"
 #include "scene.h"
 #include "shadow_maps.h"
+#include "sampler_cache.h"
 #include "texture.h"
 
 #include <glm/glm.hpp>
@@ -96,10 +97,10 @@ private:
     std::map<std::pair<Variant, Pass>, lab::PipelineBuilder::Result> lit_pipelines_;  // [specialization constants]
     // Lab 3: textures. Each map image loaded and uploaded once; per material with maps one
     // descriptor set (set 1), written once; materials without maps bind nothing.
-    lab::SamplerCache samplers_;
-    using TextureKey = std::pair<std::string, lab::TexelEncoding>;  // a map, as colour or as data
-    std::map<TextureKey, lab::Texture> textures_;
-    lab::Texture white_;                            // stands in for a map a textured material lacks
+    SamplerCache samplers_;
+    using TextureKey = std::pair<std::string, TexelEncoding>;  // a map, as colour or as data
+    std::map<TextureKey, Texture> textures_;
+    Texture white_;  // stands in for a map a textured material lacks
     lab::Handle<VkDescriptorSetLayout> texture_layout_;
     lab::Handle<VkDescriptorPool> texture_pool_;
     std::vector<VkDescriptorSet> material_sets_;       // [material]; VK_NULL_HANDLE: no maps
@@ -109,5 +110,5 @@ private:
     std::unique_ptr<ShadowMaps> shadow_maps_;
     std::vector<lab::Buffer> shadows_;  // [frame slot] GpuShadows
     std::vector<const DrawItem*> opaque_, translucent_;  // this frame's draw order
-    lab::DepthView shadow_view_;  // UI only: common/app/depth_view.h
+    DepthView shadow_view_;  // the shadow-map view (depth_view.h)
 };

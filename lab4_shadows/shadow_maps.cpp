@@ -41,15 +41,15 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     // 32-bit float depth where the device samples it (precision for perspective maps), else 16-bit.
     // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
     const VkFormatFeatureFlags depth_use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    depth_format_ = lab::format_supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
-    const bool linear = lab::format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
+    depth_format_ = format_supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
+    const bool linear = format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
     const VkFormatFeatureFlags blend_use = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    transmittance_format_ = lab::format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
+    transmittance_format_ = format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
 
-    depth_pass_ = lab::make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
-    translucent_pass_ = lab::make_offscreen_pass(vk, transmittance_format_, depth_format_);
-    nearest_sampler_ = lab::make_depth_sampler(vk, false, false);
-    compare_sampler_ = lab::make_depth_sampler(vk, linear, true);
+    depth_pass_ = make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
+    translucent_pass_ = make_offscreen_pass(vk, transmittance_format_, depth_format_);
+    nearest_sampler_ = make_depth_sampler(vk, false, false);
+    compare_sampler_ = make_depth_sampler(vk, linear, true);
 
     // Opaque casters: depth only — position-only vertex input, no fragment shader, no colour.
     const lab::Handle<VkShaderModule> vertex_shader = lab::load_shader(vk, shader_dir, "shadow.vert");
@@ -120,12 +120,12 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
     m.cube = cube;
     const VkImageUsageFlags sampled_depth = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     const VkImageUsageFlags sampled_color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    m.depth = lab::create_layered_target(vk_, depth_pass_, resolution, cube, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT);
+    m.depth = create_layered_target(vk_, depth_pass_, resolution, cube, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT);
     if (!translucent) return m;
     // One scratch depth serves every face (the faces are rendered one after the other).
     m.scratch_depth = lab::create_image_2d(vk_, {resolution, resolution}, depth_format_,
                                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-    m.transmittance = lab::create_layered_target(vk_, translucent_pass_, resolution, cube, transmittance_format_, sampled_color,
+    m.transmittance = create_layered_target(vk_, translucent_pass_, resolution, cube, transmittance_format_, sampled_color,
                                                  VK_IMAGE_ASPECT_COLOR_BIT, {m.scratch_depth.view});
     return m;
 }
@@ -158,7 +158,7 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
 
 bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }
 
-void ShadowMaps::draw_view(lab::DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
+void ShadowMaps::draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
     const GpuShadow& gpu = maps_[size_t(slot)].gpu;  // perspective depth: y − z / distance
     view.draw(cmd, maps_[size_t(slot)].depth, glm::vec2(gpu.params.y, gpu.params.z), extent);

@@ -6,7 +6,9 @@
 // volume, changed: a static scene renders its maps once.
 #pragma once
 
-#include "depth_view.h"  // and offscreen.h, pipeline_builder.h
+#include "depth_view.h"
+#include "offscreen.h"
+#include "pipeline_builder.h"
 #include "gpu_mesh.h"
 #include "light_frustum.h"
 #include "lights.h"
@@ -55,15 +57,15 @@ public:
     int maps() const { return int(maps_.size()); }
     int renders() const { return renders_; }  // maps rendered so far (a cube counts once)
     // The shadow-map view (UI only): slot's map (a cube: its six faces) drawn by `view`; none for no map.
-    void draw_view(lab::DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const;
+    void draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const;
 
 private:
     struct Map {
         int light = -1;  // index into Lighting::lights
         bool cube = false;
-        lab::LayeredTarget depth;          // the map (its size: the resolution), one framebuffer per face
+        LayeredTarget depth;          // the map (its size: the resolution), one framebuffer per face
         lab::Image scratch_depth;          // translucent scenes: the transmittance's depth test, not kept
-        lab::LayeredTarget transmittance;  // r = Π(1 − α), g = nearest translucent depth
+        LayeredTarget transmittance;  // r = Π(1 − α), g = nearest translucent depth
         std::vector<float> key;  // what the map was rendered from (change tracking)
         GpuShadow gpu{};
     };

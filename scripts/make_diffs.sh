@@ -6,6 +6,8 @@
 #   bash scripts/make_diffs.sh --check    # exit 1 if a committed diff is stale (CTest: diffs_up_to_date)
 #   bash scripts/make_diffs.sh --lessons  # exit 1 if a lab changes a file the manifest does not list
 #                                         # (CTest: lessons_only)
+#   bash scripts/make_diffs.sh --shares [MIN%]  # each diff's non-blank changed lines by category;
+#                                         # exit 1 if a diff's lesson share is under MIN% (CTest: lesson_share)
 #
 # What goes into a diff, and in which order, comes from the manifest docs/diffs/lessons.md: for
 # each lab, the files it adds or changes, in reading order, each with what it teaches (the reading
@@ -228,6 +230,45 @@ case "$mode" in
     if ((problems)); then exit 1; fi
     echo "each lab changes only its lesson (${#labs[@]} labs, manifest $manifest)"
     ;;
+  --shares)
+    # What each diff spends its changed lines on. The category is the manifest entry's: "UI only:"
+    # (panels), "Plumbing:" (build files, the frame loop's wiring), "Noise:" (changes that teach
+    # nothing), else the lesson. Counted: the non-blank +/− lines of the lab folder and its shaders
+    # (the scene files are data, not code, and are left out).
+    min="${2:-0}"
+    printf '%-42s %7s %5s %9s %6s %7s\n' diff lesson UI plumbing noise "lesson%"
+    for ((i = 0; i + 1 < ${#labs[@]}; i++)); do
+      a=${labs[i]} b=${labs[i + 1]}
+      declare -A category=()
+      while IFS=$'\037' read -r path from what; do
+        case "$what" in
+          "UI only:"*) category[$path]=ui ;;
+          "Plumbing:"*) category[$path]=plumbing ;;
+          "Noise:"*) category[$path]=noise ;;
+          *) category[$path]=lesson ;;
+        esac
+      done < <(entries "$b")
+      declare -A n=([lesson]=0 [ui]=0 [plumbing]=0 [noise]=0)
+      while IFS= read -r line; do
+        case "$line" in
+          "+++ b/"*) path="${line#+++ b/}"; continue ;;
+          "+++ /dev/null") path=""; continue ;;
+          "--- "*) continue ;;
+        esac
+        [[ -n "$path" && "$path" != scenes/* ]] || continue
+        [[ "$line" =~ ^[-+].*[^[:space:]] ]] || continue
+        c="${category[$path]:-lesson}"
+        n[$c]=$((n[$c] + 1))
+      done < <(generate_one "$a" "$b")
+      total=$((n[lesson] + n[ui] + n[plumbing] + n[noise]))
+      share=$((total ? 1000 * n[lesson] / total : 1000))
+      printf '%-42s %7d %5d %9d %6d %5d.%d\n' "$a-$b" "${n[lesson]}" "${n[ui]}" "${n[plumbing]}" "${n[noise]}" \
+        $((share / 10)) $((share % 10))
+      ((share >= 10 * min)) || problem "$a-$b: the lesson is ${share%?}.${share: -1} % of the changed lines, under $min %"
+      unset category n
+    done
+    if ((problems)); then exit 1; fi
+    ;;
   "")
     rm -f docs/diffs/*.diff
     for ((i = 0; i + 1 < ${#labs[@]}; i++)); do
@@ -239,7 +280,7 @@ case "$mode" in
     done
     ;;
   *)
-    echo "usage: bash scripts/make_diffs.sh [--check | --lessons]" >&2
+    echo "usage: bash scripts/make_diffs.sh [--check | --lessons | --shares [MIN%]]" >&2
     exit 2
     ;;
 esac

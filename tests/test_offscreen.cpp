@@ -1,4 +1,4 @@
-// test_offscreen.cpp — common/vulkan/offscreen.h's layered render targets and common/app/depth_view.h on a
+// test_offscreen.cpp — lab 4's offscreen.h (layered render targets) and depth_view.h (the map view) on a
 // real device, validation on: each layer of a cube target cleared to its own depth, shown by the
 // depth view, read back at the squares' centres (positions and greys worked out by hand).
 #include "depth_view.h"
@@ -23,7 +23,7 @@ int srgb8(double v) {
 int red_at(const lab::Image8& image, int x, int y) { return image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4]; }
 
 // Clears every layer of `target` to depth[layer] (its pass begun and ended on each).
-void clear_layers(VkCommandBuffer cmd, const lab::LayeredTarget& target, const std::vector<float>& depth) {
+void clear_layers(VkCommandBuffer cmd, const LayeredTarget& target, const std::vector<float>& depth) {
     for (uint32_t layer = 0; layer < target.layers(); ++layer) {
         target.begin(cmd, layer, depth[layer]);
         vkCmdEndRenderPass(cmd);
@@ -39,23 +39,23 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         lab::VulkanContext vk(options);
         lab::HeadlessTarget frame_target(vk, {kSize, kSize});
         const VkFormatFeatureFlags use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-        const VkFormat format = lab::format_supports(vk, VK_FORMAT_D32_SFLOAT, use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
-        const lab::Handle<VkRenderPass> pass = lab::make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, format);
+        const VkFormat format = format_supports(vk, VK_FORMAT_D32_SFLOAT, use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
+        const lab::Handle<VkRenderPass> pass = make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, format);
         const VkImageUsageFlags usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 
         // A cube: six layers, each with its own 2D view and framebuffer; a 2D target: its view is its layer.
-        const lab::LayeredTarget cube = lab::create_layered_target(vk, pass, 4, true, format, usage, VK_IMAGE_ASPECT_DEPTH_BIT);
+        const LayeredTarget cube = create_layered_target(vk, pass, 4, true, format, usage, VK_IMAGE_ASPECT_DEPTH_BIT);
         ASSERT_EQ(cube.layers(), 6u);
         std::set<VkImageView> views;
         for (uint32_t i = 0; i < 6; ++i) views.insert(cube.layer(i));
         EXPECT_EQ(views.size(), 6u);
         EXPECT_EQ(views.count(cube.image.view.get()), 0u) << "a face is a 2D view, not the cube view";
-        lab::LayeredTarget flat = lab::create_layered_target(vk, pass, 8, false, format, usage, VK_IMAGE_ASPECT_DEPTH_BIT);
+        LayeredTarget flat = create_layered_target(vk, pass, 8, false, format, usage, VK_IMAGE_ASPECT_DEPTH_BIT);
         ASSERT_EQ(flat.layers(), 1u);
         EXPECT_EQ(flat.layer(0), flat.image.view.get());
         EXPECT_TRUE(cube.pass == pass.get() && cube.size == 4 && flat.size == 8 && !cube.color);
 
-        lab::DepthView depth_view(vk, frame_target.render_pass(), 7);
+        DepthView depth_view(vk, frame_target.render_pass(), 7, LAB4_SHADER_DIR);
         // Frame 1: layer i of the cube at depth (i + 1) / 8, orthographic (shown as stored).
         // Six squares of 0.42 NDC (84 / 2 rows), three to a row, 0.01 apart, centred:
         // column centres x0 + 0.21 = (c − 1.5) · 0.43 + 0.21 → −0.435, −0.005, 0.425 → pixels 56, 99, 142;

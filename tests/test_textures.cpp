@@ -12,6 +12,7 @@
 #include "scene.h"
 #include "lab_runner.h"
 #include "temp_dir.h"
+#include "sampler_cache.h"
 #include "texture.h"
 #include "texture_image.h"
 
@@ -242,19 +243,19 @@ TEST(TextureImage, DeviceLimitIsCheckedBeforeDecoding) {
 // --- the lab's CPU mip fallback ----------------------------------------------------
 
 TEST(MipChain, LevelCountAndCpuBoxFilterInLinearColour) {
-    EXPECT_EQ(lab::mip_level_count(1, 1), 1u);
-    EXPECT_EQ(lab::mip_level_count(256, 256), 9u);
-    EXPECT_EQ(lab::mip_level_count(16384, 1), 15u);
-    EXPECT_EQ(lab::mip_level_count(5, 3), 3u);  // 5×3, 2×1, 1×1
+    EXPECT_EQ(mip_level_count(1, 1), 1u);
+    EXPECT_EQ(mip_level_count(256, 256), 9u);
+    EXPECT_EQ(mip_level_count(16384, 1), 15u);
+    EXPECT_EQ(mip_level_count(5, 3), 3u);  // 5×3, 2×1, 1×1
     // Black and white average to linear 0.5 = sRGB 0.7354 → 188 (not 128: the mean is taken in linear light).
     lab::Image8 bw = solid(2, 2, 0);
     for (int c = 0; c < 3; ++c) bw.rgba[size_t(c)] = bw.rgba[12 + size_t(c)] = 255;
     bw.rgba[3] = bw.rgba[7] = bw.rgba[11] = bw.rgba[15] = 255;
-    const lab::Image8 next = lab::downsample(bw, lab::TexelEncoding::Srgb);
+    const lab::Image8 next = downsample(bw, TexelEncoding::Srgb);
     ASSERT_EQ(next.width, 1);
     EXPECT_EQ(pixel(next, 0, 0)[0], 188);
     EXPECT_EQ(pixel(next, 0, 0)[3], 255);
-    const lab::Image8 odd = lab::downsample(solid(5, 3, 77), lab::TexelEncoding::Srgb);
+    const lab::Image8 odd = downsample(solid(5, 3, 77), TexelEncoding::Srgb);
     EXPECT_EQ(odd.width, 2);
     EXPECT_EQ(odd.height, 1);
     EXPECT_EQ(pixel(odd, 1, 0)[1], 77);
@@ -271,23 +272,23 @@ TEST(MipChain, OddSidesAreBoxAveragesOfEveryTexel) {
         for (uint8_t v : values) im.rgba.insert(im.rgba.end(), {v, v, v, 255});
         return im;
     };
-    const lab::Image8 three = lab::downsample(row({0, 90, 255}, false), lab::TexelEncoding::Linear);
+    const lab::Image8 three = downsample(row({0, 90, 255}, false), TexelEncoding::Linear);
     EXPECT_EQ(pixel(three, 0, 0)[0], 115);  // (0 + 90 + 255) / 3 = 115
-    const lab::Image8 five = lab::downsample(row({10, 20, 30, 40, 50}, false), lab::TexelEncoding::Linear);
+    const lab::Image8 five = downsample(row({10, 20, 30, 40, 50}, false), TexelEncoding::Linear);
     ASSERT_EQ(five.width, 2);
     EXPECT_EQ(pixel(five, 0, 0)[0], 18);
     EXPECT_EQ(pixel(five, 1, 0)[0], 42);
-    EXPECT_EQ(pixel(lab::downsample(row({0, 90, 255}, true), lab::TexelEncoding::Linear), 0, 0)[2], 115);
+    EXPECT_EQ(pixel(downsample(row({0, 90, 255}, true), TexelEncoding::Linear), 0, 0)[2], 115);
     // sRGB: averaged in linear colour: 0, 255, 0 → linear 1/3 → sRGB 255·(1.055·(1/3)^(1/2.4) − 0.055) = 156.2.
-    EXPECT_EQ(pixel(lab::downsample(row({0, 255, 0}, false), lab::TexelEncoding::Srgb), 0, 0)[1], 156);
-    EXPECT_TRUE(lab::blit_halves_exactly(64, 32));
-    EXPECT_TRUE(lab::blit_halves_exactly(1, 8));
-    EXPECT_FALSE(lab::blit_halves_exactly(25, 16));
-    EXPECT_FALSE(lab::blit_halves_exactly(2, 3));
+    EXPECT_EQ(pixel(downsample(row({0, 255, 0}, false), TexelEncoding::Srgb), 0, 0)[1], 156);
+    EXPECT_TRUE(blit_halves_exactly(64, 32));
+    EXPECT_TRUE(blit_halves_exactly(1, 8));
+    EXPECT_FALSE(blit_halves_exactly(25, 16));
+    EXPECT_FALSE(blit_halves_exactly(2, 3));
 }
 
 // Every level of an uploaded texture, read back from the device.
-std::vector<lab::Image8> read_levels(const lab::VulkanContext& vk, const lab::Texture& t) {
+std::vector<lab::Image8> read_levels(const lab::VulkanContext& vk, const Texture& t) {
     std::vector<lab::Image8> levels;
     VkDeviceSize bytes = 0;
     for (uint32_t l = 0; l < t.levels; ++l) bytes += VkDeviceSize(std::max(t.width >> l, 1u)) * std::max(t.height >> l, 1u) * 4;
@@ -336,15 +337,15 @@ TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
         const auto next = [&] { return uint8_t((state = state * 1664525u + 1013904223u) >> 24); };
         const int sizes[][2] = {{64, 32}, {100, 60}, {7, 5}, {1, 9}, {33, 2}, {3, 3}};
         for (const auto& size : sizes)
-            for (const lab::TexelEncoding encoding : {lab::TexelEncoding::Srgb, lab::TexelEncoding::Linear})
-                for (const lab::MipSource source : {lab::MipSource::Auto, lab::MipSource::Cpu}) {
+            for (const TexelEncoding encoding : {TexelEncoding::Srgb, TexelEncoding::Linear})
+                for (const MipSource source : {MipSource::Auto, MipSource::Cpu}) {
                     lab::Image8 image;
                     image.width = size[0];
                     image.height = size[1];
                     for (int i = 0; i < size[0] * size[1] * 4; ++i) image.rgba.push_back(next());
-                    const lab::Texture t = lab::upload_texture(vk, image, true, source, encoding);
+                    const Texture t = upload_texture(vk, image, true, source, encoding);
                     const std::vector<lab::Image8> levels = read_levels(vk, t);
-                    const bool srgb = encoding == lab::TexelEncoding::Srgb;
+                    const bool srgb = encoding == TexelEncoding::Srgb;
                     EXPECT_EQ(levels[0].rgba, image.rgba);
                     for (size_t l = 0; l + 1 < levels.size(); ++l) {
                         const ref::RefTexture box = ref::make_texture(levels[l].width, levels[l].height, levels[l].rgba, true, srgb);
@@ -362,7 +363,7 @@ TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
                                 }
                         // 1/255 (+ the double rounding of 255·v: an exact one-level step reads 1.0000000000001)
                         EXPECT_LE(worst, 1.0 + 1e-9) << worst << " " << size[0] << "x" << size[1] << (srgb ? " sRGB" : " data")
-                                              << (source == lab::MipSource::Cpu ? " CPU" : " auto") << ": level " << l + 1;
+                                              << (source == MipSource::Cpu ? " CPU" : " auto") << ": level " << l + 1;
                     }
                 }
     }
@@ -472,7 +473,7 @@ TEST(SamplerCache, IdenticalSettingsShareOneSampler) {
     options.message_count = &messages;
     lab::VulkanContext vk(options);
     {
-        lab::SamplerCache cache(vk);
+        SamplerCache cache(vk);
         lab::SamplerDesc a, b, c;
         c.wrap = lab::SamplerDesc::Wrap::Mirror;
         const VkSampler sa = cache.get(a), sb = cache.get(b), sc = cache.get(c);

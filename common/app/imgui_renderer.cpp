@@ -3,7 +3,6 @@
 #include "pipeline_builder.h"
 #include "render_target.h"
 #include "shader.h"
-#include "texture.h"
 
 #include <imgui.h>
 
@@ -106,6 +105,28 @@ template <typename T>
 void append_value(std::vector<uint8_t>& out, const T& value) {
     append_bytes(out, &value, 1);
 }
+
+// ImGui's font atlas as a sampled image: one level, copied from a staging buffer. (Lab 3 teaches
+// texture uploads; the panels are not a lesson, so they keep their own few lines here.)
+Image upload_font_atlas(const VulkanContext& vk, const unsigned char* rgba, uint32_t width, uint32_t height) {
+    const VkDeviceSize bytes = VkDeviceSize(width) * height * 4;
+    Buffer staging = Buffer::host_visible(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    std::memcpy(staging.mapped(), rgba, size_t(bytes));
+    Image atlas = create_image_2d(vk, {width, height}, VK_FORMAT_R8G8B8A8_SRGB,
+                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    vk.run_once([&](VkCommandBuffer cmd) {
+        image_barrier(cmd, atlas.image, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {width, height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.get(), atlas.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        image_barrier(cmd, atlas.image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    });
+    return atlas;
+}
 }  // namespace
 
 // The overlay has the target's format (8-bit sRGB, like the swapchain): dark premultiplied colours
@@ -123,11 +144,7 @@ ImGuiRenderer::ImGuiRenderer(const VulkanContext& vk, VkRenderPass target_pass, 
     unsigned char* pixels = nullptr;
     int width = 0, height = 0;
     ImGui::GetIO().Fonts->GetTexDataAsRGBA32(&pixels, &width, &height);
-    Image8 atlas;
-    atlas.width = width;
-    atlas.height = height;
-    atlas.rgba.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
-    font_ = upload_texture(vk, atlas, false).image;
+    font_ = upload_font_atlas(vk, pixels, uint32_t(width), uint32_t(height));
 
     // Nearest filtering: the panels are drawn at one texel per pixel (glyphs start on whole
     // pixels), where linear filtering reads the same texel at four times the cost on a CPU driver.

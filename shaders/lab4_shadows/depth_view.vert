@@ -1,5 +1,5 @@
 #version 450
-// depth_view.vert — one square of the depth view (common/depth_view.h): two triangles made from
+// depth_view.vert — one square of the depth view (lab4_shadows/depth_view.h): two triangles made from
 // the vertex index (no vertex buffer) over the rectangle given in normalized device coordinates.
 
 layout(push_constant) uniform ViewConstants {

@@ -1,4 +1,4 @@
-// texture.cpp — texture upload, mip chains and the sampler cache.
+// texture.cpp — a texture map on the GPU: staging copy, layout transitions, the mip chain.
 #include "texture.h"
 
 #include <algorithm>
@@ -9,7 +9,6 @@
 #include <utility>
 #include <vector>
 
-namespace lab {
 namespace {
 
 double srgb_to_linear(uint8_t v) {
@@ -26,7 +25,7 @@ VkFormat format_of(TexelEncoding encoding) {
     return encoding == TexelEncoding::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
 }
 
-bool can_blit_linear(const VulkanContext& vk, VkFormat format) {
+bool can_blit_linear(const lab::VulkanContext& vk, VkFormat format) {
     const VkFormatProperties fp = vk.format_properties(format);
     const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
                                         VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
@@ -57,8 +56,8 @@ bool blit_halves_exactly(uint32_t width, uint32_t height) {
     return (width % 2 == 0 || width == 1) && (height % 2 == 0 || height == 1);
 }
 
-Image8 downsample(const Image8& image, TexelEncoding encoding) {
-    Image8 out;
+lab::Image8 downsample(const lab::Image8& image, TexelEncoding encoding) {
+    lab::Image8 out;
     out.width = std::max(image.width / 2, 1);
     out.height = std::max(image.height / 2, 1);
     out.rgba.resize(size_t(out.width) * size_t(out.height) * 4);
@@ -83,7 +82,7 @@ Image8 downsample(const Image8& image, TexelEncoding encoding) {
     return out;
 }
 
-Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source, TexelEncoding encoding) {
+Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, bool mipmaps, MipSource source, TexelEncoding encoding) {
     Texture t;
     t.width = uint32_t(pixels.width);
     t.height = uint32_t(pixels.height);
@@ -97,12 +96,12 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
     const bool gpu_mips = t.levels > 1 && source == MipSource::Auto && exact && can_blit_linear(vk, format);
 
     // The CPU fallback computes every level here; the GPU path uploads level 0 only.
-    std::vector<Image8> chain{pixels};
+    std::vector<lab::Image8> chain{pixels};
     if (t.levels > 1 && !gpu_mips)
         while (chain.size() < t.levels) chain.push_back(downsample(chain.back(), encoding));
     VkDeviceSize bytes = 0;
-    for (const Image8& level : chain) bytes += level.rgba.size();
-    Buffer staging = Buffer::host_visible(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    for (const lab::Image8& level : chain) bytes += level.rgba.size();
+    lab::Buffer staging = lab::Buffer::host_visible(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     std::vector<VkBufferImageCopy> copies;
     VkDeviceSize offset = 0;
     for (uint32_t level = 0; level < chain.size(); ++level) {
@@ -117,16 +116,16 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
 
     // TRANSFER_SRC: the blits read the levels above; tests read every level back.
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    t.image = create_image_2d(vk, {t.width, t.height}, format, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
+    t.image = lab::create_image_2d(vk, {t.width, t.height}, format, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
     const VkImage image = t.image.image;
     vk.run_once([&](VkCommandBuffer cmd) {
         const auto transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        image_barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+        lab::image_barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, transfer);
         vkCmdCopyBufferToImage(cmd, staging.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies.size()),
                                copies.data());
         const auto to_shader = [&](uint32_t level, VkImageLayout from, VkAccessFlags access) {
-            image_barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
+            lab::image_barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
                     VK_ACCESS_SHADER_READ_BIT, transfer, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
         };
         if (!gpu_mips) {
@@ -138,7 +137,7 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
         // exactly the 2×2 box (an sRGB blit decodes, filters in linear colour, encodes).
         int32_t w = int32_t(t.width), h = int32_t(t.height);
         for (uint32_t level = 1; level < t.levels; ++level) {
-            image_barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+            lab::image_barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, transfer, transfer);
             const int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
             VkImageBlit blit{};
@@ -156,45 +155,3 @@ Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipma
     });
     return t;
 }
-
-float SamplerCache::effective_anisotropy(int requested) const {
-    if (requested <= 1 || !vk_.enabled_features().samplerAnisotropy) return 1.0f;
-    return std::min(float(requested), vk_.properties().limits.maxSamplerAnisotropy);
-}
-
-VkSampler SamplerCache::get(const SamplerDesc& desc) {
-    auto it = samplers_.find(desc);
-    if (it != samplers_.end()) return it->second;
-    const float anisotropy = effective_anisotropy(desc.anisotropy);
-    if (desc.anisotropy > 1 && anisotropy < float(desc.anisotropy)) {
-        char line[160];
-        std::snprintf(line, sizeof line, "anisotropy %d clamped to %g (the device limit%s)", desc.anisotropy,
-                      double(anisotropy),
-                      vk_.enabled_features().samplerAnisotropy ? "" : ": no anisotropic filtering");
-        warnings_.push_back(line);
-        std::fprintf(stderr, "warning: %s\n", line);
-    }
-    using S = SamplerDesc;
-    const VkFilter filter = desc.filter == S::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
-    const VkSamplerAddressMode wrap = desc.wrap == S::Wrap::Repeat  ? VK_SAMPLER_ADDRESS_MODE_REPEAT
-                                      : desc.wrap == S::Wrap::Clamp ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
-                                                                    : VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = filter;
-    info.minFilter = filter;
-    info.mipmapMode = desc.mipmaps == S::Mipmaps::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = info.addressModeV = info.addressModeW = wrap;
-    info.anisotropyEnable = anisotropy > 1.0f ? VK_TRUE : VK_FALSE;
-    info.maxAnisotropy = anisotropy;
-    info.minLod = 0.0f;
-    // "mipmaps": "none" reads level 0 only (the spec's way to switch mipmapping off).
-    info.maxLod = desc.mipmaps == S::Mipmaps::None ? 0.0f : VK_LOD_CLAMP_NONE;
-    info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
-    VkSampler sampler;
-    VK_CHECK(vkCreateSampler(vk_.device(), &info, nullptr, &sampler));
-    VkDevice device = vk_.device();
-    return samplers_.emplace(desc, Handle<VkSampler>(sampler, [device](VkSampler s) { vkDestroySampler(device, s, nullptr); }))
-        .first->second;
-}
-
-}  // namespace lab

@@ -1,6 +1,8 @@
-// offscreen.h — render passes into images the lab samples afterwards (lab 4's shadow maps):
-// the render pass, the images with a framebuffer per layer, beginning a pass, samplers for depth
-// maps, format checks.
+// offscreen.h — the Vulkan objects of lab 4's first pass: render passes into images the camera's
+// pass samples afterwards (the shadow maps). The depth-only render pass and its dependencies (the
+// barrier between the passes), the map's image with a framebuffer per layer (a cube map's six face
+// views), beginning a pass, the samplers that read depth maps (the comparison sampler), and the
+// format check that picks the depth format. shadow_maps.cpp uses them.
 #pragma once
 
 #include "buffer.h"
@@ -9,28 +11,26 @@
 
 #include <vector>
 
-namespace lab {
-
 // Does the device support `features` for `format` (optimal tiling)?
-bool format_supports(const VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features);
+bool format_supports(const lab::VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features);
 
 // A one-subpass render pass into `color` (VK_FORMAT_UNDEFINED: none) and `depth`, both cleared.
 // The colour ends SHADER_READ_ONLY; the depth is kept and ends DEPTH_STENCIL_READ_ONLY when there
 // is no colour (a depth map), else it is dropped. Its dependencies order the pass after earlier
 // shader reads of the same images (earlier frames) and before the vertex / fragment shaders that
 // read them next.
-Handle<VkRenderPass> make_offscreen_pass(const VulkanContext& vk, VkFormat color, VkFormat depth);
+lab::Handle<VkRenderPass> make_offscreen_pass(const lab::VulkanContext& vk, VkFormat color, VkFormat depth);
 
 // A square framebuffer of `size`² over `views` (in the pass's attachment order).
-Handle<VkFramebuffer> make_square_framebuffer(const VulkanContext& vk, VkRenderPass pass,
+lab::Handle<VkFramebuffer> make_square_framebuffer(const lab::VulkanContext& vk, VkRenderPass pass,
                                               const std::vector<VkImageView>& views, uint32_t size);
 
 // A square image to render into and sample afterwards: 2D, or a cube map (six layers) with a 2D
 // view of each face to render into; one framebuffer of `pass` per layer.
 struct LayeredTarget {
-    Image image;                                      // its view (2D or cube) is what shaders sample
-    std::vector<Handle<VkImageView>> layer_views;     // a cube's faces (2D: none, the image's view)
-    std::vector<Handle<VkFramebuffer>> framebuffers;  // [layer]
+    lab::Image image;                                      // its view (2D or cube) is what shaders sample
+    std::vector<lab::Handle<VkImageView>> layer_views;     // a cube's faces (2D: none, the image's view)
+    std::vector<lab::Handle<VkFramebuffer>> framebuffers;  // [layer]
     VkRenderPass pass = VK_NULL_HANDLE;
     uint32_t size = 0;   // size² texels
     bool color = false;  // a colour image (else depth)
@@ -48,7 +48,7 @@ struct LayeredTarget {
 
 // `size`² texels of `format`, 1 layer or 6 (`cube`); each framebuffer's attachments are the layer,
 // then `more` (e.g. a depth buffer the layers share: they are rendered one after the other).
-LayeredTarget create_layered_target(const VulkanContext& vk, VkRenderPass pass, uint32_t size, bool cube, VkFormat format,
+LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass pass, uint32_t size, bool cube, VkFormat format,
                                     VkImageUsageFlags usage, VkImageAspectFlags aspect,
                                     const std::vector<VkImageView>& more = {});
 
@@ -59,6 +59,4 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
 
 // A sampler for depth maps: nearest or linear, optionally comparing (compare op LESS_OR_EQUAL:
 // 1 where the reference ≤ the stored depth); outside the map it reads white (depth 1).
-Handle<VkSampler> make_depth_sampler(const VulkanContext& vk, bool linear, bool compare);
-
-}  // namespace lab
+lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool linear, bool compare);

@@ -1,4 +1,9 @@
-// texture.h — textures on the GPU (lab 3): upload with a mip chain, and samplers.
+// texture.h — a texture map on the GPU: the image from pixels, with its mip chain.
+//
+// The Vulkan half of lab 3's lesson (texture.cpp): a staging buffer the CPU writes, an image in
+// device memory, layout transitions around the copy, the mip chain blitted level by level on the
+// GPU (or box-filtered on the CPU where the device can't), and the final layout the fragment
+// shader samples in. The sampler that reads it is sampler_cache.h.
 //
 // A colour map (albedo, emissive) is 8-bit RGBA in a *_SRGB format: the sampler decodes sRGB to
 // linear before it filters, so filtering and lighting happen in linear colour. A data map
@@ -8,15 +13,9 @@
 
 #include "buffer.h"
 #include "image_io.h"
-#include "texture_image.h"
-#include "scene.h"
 #include "vk_context.h"
 
-#include <map>
-#include <string>
-#include <vector>
-
-namespace lab {
+#include <cstdint>
 
 // How the mip chain is made: blits on the GPU (vkCmdBlitImage, linear filter) when the format
 // supports linear blits and every level halves both sides exactly, else the box filter below on
@@ -27,7 +26,7 @@ enum class MipSource { Auto, Cpu };
 enum class TexelEncoding { Srgb, Linear };
 
 struct Texture {
-    Image image;  // R8G8B8A8 _SRGB or _UNORM, SHADER_READ_ONLY_OPTIMAL, the view covers every level
+    lab::Image image;  // R8G8B8A8 _SRGB or _UNORM, SHADER_READ_ONLY_OPTIMAL, the view covers every level
     uint32_t width = 0;
     uint32_t height = 0;
     uint32_t levels = 1;
@@ -40,31 +39,12 @@ uint32_t mip_level_count(uint32_t width, uint32_t height);
 // each texel is the mean of the parent area it covers, w/⌊w/2⌋ × h/⌊h/2⌋ texels, with partly
 // covered texels weighted by the part (an even side: 2 texels; 3 → 1: all three; 5 → 2: 1, 1, ½).
 // sRGB is decoded to linear before averaging and encoded after; alpha and linear data as they are.
-Image8 downsample(const Image8& image, TexelEncoding encoding);
+lab::Image8 downsample(const lab::Image8& image, TexelEncoding encoding);
 // True when a linear blit makes exactly that level from `width` × `height`: each side even, or 1.
 bool blit_halves_exactly(uint32_t width, uint32_t height);
 
 // Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain: blits where
 // the device has linear blits for the format, else the CPU fallback (`--dev-no-blit` makes a
 // device without them, so tests run that path on any device).
-Texture upload_texture(const VulkanContext& vk, const Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto,
+Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto,
                        TexelEncoding encoding = TexelEncoding::Srgb);
-
-// One VkSampler per distinct SamplerDesc. Anisotropy is clamped to the device limit (or off
-// when the device lacks the feature) with one warning line each time a request is clamped.
-class SamplerCache {
-public:
-    explicit SamplerCache(const VulkanContext& vk) : vk_(vk) {}
-    VkSampler get(const SamplerDesc& desc);
-    size_t size() const { return samplers_.size(); }
-    // The anisotropy the device really uses for `requested` (1 = off).
-    float effective_anisotropy(int requested) const;
-    const std::vector<std::string>& warnings() const { return warnings_; }
-
-private:
-    const VulkanContext& vk_;
-    std::map<SamplerDesc, Handle<VkSampler>> samplers_;
-    std::vector<std::string> warnings_;
-};
-
-}  // namespace lab

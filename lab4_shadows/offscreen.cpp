@@ -1,11 +1,10 @@
+// offscreen.cpp — the shadow pass's render passes, images, framebuffers and samplers (offscreen.h).
 #include "offscreen.h"
 
 #include "render_target.h"
 #include "vk_check.h"
 
-namespace lab {
-
-bool format_supports(const VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features) {
+bool format_supports(const lab::VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features) {
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(vk.physical_device(), format, &p);
     return (p.optimalTilingFeatures & features) == features;
@@ -14,7 +13,7 @@ bool format_supports(const VulkanContext& vk, VkFormat format, VkFormatFeatureFl
 // A render pass into a light's map: `color` (VK_FORMAT_UNDEFINED: none) and depth, both
 // cleared, then read by the camera's pass. The dependencies order this pass after the shaders
 // of earlier frames that read the same images, and before the shaders that read them next.
-Handle<VkRenderPass> make_offscreen_pass(const VulkanContext& vk, VkFormat color, VkFormat depth) {
+lab::Handle<VkRenderPass> make_offscreen_pass(const lab::VulkanContext& vk, VkFormat color, VkFormat depth) {
     std::vector<VkAttachmentDescription> attachments;
     VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkAttachmentReference depth_ref{color ? 1u : 0u, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
@@ -53,10 +52,10 @@ Handle<VkRenderPass> make_offscreen_pass(const VulkanContext& vk, VkFormat color
     dependencies[1].dstStageMask = shaders;
     dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
 
-    return create_render_pass(vk, uint32_t(attachments.size()), attachments.data(), subpass, dependencies);
+    return lab::create_render_pass(vk, uint32_t(attachments.size()), attachments.data(), subpass, dependencies);
 }
 
-Handle<VkSampler> make_depth_sampler(const VulkanContext& vk, bool linear, bool compare) {
+lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool linear, bool compare) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = info.minFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
@@ -68,10 +67,10 @@ Handle<VkSampler> make_depth_sampler(const VulkanContext& vk, bool linear, bool 
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(vk.device(), &info, nullptr, &sampler));
     VkDevice device = vk.device();
-    return Handle<VkSampler>(sampler, [device](VkSampler s) { vkDestroySampler(device, s, nullptr); });
+    return lab::Handle<VkSampler>(sampler, [device](VkSampler s) { vkDestroySampler(device, s, nullptr); });
 }
 
-Handle<VkFramebuffer> make_square_framebuffer(const VulkanContext& vk, VkRenderPass pass,
+lab::Handle<VkFramebuffer> make_square_framebuffer(const lab::VulkanContext& vk, VkRenderPass pass,
                                               const std::vector<VkImageView>& views, uint32_t size) {
     VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     info.renderPass = pass;
@@ -82,7 +81,7 @@ Handle<VkFramebuffer> make_square_framebuffer(const VulkanContext& vk, VkRenderP
     VkFramebuffer framebuffer;
     VK_CHECK(vkCreateFramebuffer(vk.device(), &info, nullptr, &framebuffer));
     VkDevice device = vk.device();
-    return Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+    return lab::Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
 }
 
 LayeredTarget& LayeredTarget::operator=(LayeredTarget&& other) noexcept {
@@ -108,16 +107,16 @@ void LayeredTarget::clear(VkCommandBuffer cmd) const {
     }
 }
 
-LayeredTarget create_layered_target(const VulkanContext& vk, VkRenderPass pass, uint32_t size, bool cube, VkFormat format,
+LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass pass, uint32_t size, bool cube, VkFormat format,
                                     VkImageUsageFlags usage, VkImageAspectFlags aspect,
                                     const std::vector<VkImageView>& more) {
     LayeredTarget t;
     t.pass = pass;
     t.size = size;
     t.color = (aspect & VK_IMAGE_ASPECT_COLOR_BIT) != 0;
-    t.image = cube ? create_image_cube(vk, size, format, usage, aspect) : create_image_2d(vk, {size, size}, format, usage, aspect);
+    t.image = cube ? lab::create_image_cube(vk, size, format, usage, aspect) : lab::create_image_2d(vk, {size, size}, format, usage, aspect);
     for (uint32_t layer = 0; layer < (cube ? 6u : 1u); ++layer) {
-        if (cube) t.layer_views.push_back(create_layer_view(vk, t.image.image, format, aspect, layer));
+        if (cube) t.layer_views.push_back(lab::create_layer_view(vk, t.image.image, format, aspect, layer));
         std::vector<VkImageView> views = {t.layer(layer)};
         views.insert(views.end(), more.begin(), more.end());
         t.framebuffers.push_back(make_square_framebuffer(vk, pass, views, size));
@@ -142,5 +141,3 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
-
-}  // namespace lab

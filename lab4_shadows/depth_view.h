@@ -1,5 +1,6 @@
-// depth_view.h — depth images on screen as grey squares, near black and far white (lab 4's
-// shadow-map view). UI only: drawn inside the frame's render pass, over the picture.
+// depth_view.h — depth images on screen as grey squares, near black and far white: the shadow-map
+// view (`--dev-shadow-view`, the Shadows panel). Drawn inside the frame's render pass, over the
+// picture, with a plain (non-comparing) sampler: the shader reads the stored depth itself.
 #pragma once
 
 #include "offscreen.h"
@@ -9,15 +10,15 @@
 #include <glm/glm.hpp>
 
 #include <map>
+#include <string>
 #include <vector>
-
-namespace lab {
 
 class DepthView {
 public:
     // `pass`: the render pass it draws in; `max_images`: how many different views it may show
-    // (each gets its descriptor set on first use; the views must outlive this object).
-    DepthView(const VulkanContext& vk, VkRenderPass pass, uint32_t max_images);
+    // (each gets its descriptor set on first use; the views must outlive this object); the shaders
+    // depth_view.vert / .frag come from `shader_dir`.
+    DepthView(const lab::VulkanContext& vk, VkRenderPass pass, uint32_t max_images, const std::string& shader_dir);
 
     // Draws the layers of `target` (a depth image in DEPTH_STENCIL_READ_ONLY_OPTIMAL, e.g. a cube
     // map's six faces) as squares at the bottom centre of a frame of `extent`, three to a row, the
@@ -27,13 +28,11 @@ public:
     void draw(VkCommandBuffer cmd, const LayeredTarget& target, glm::vec2 perspective, VkExtent2D extent);
 
 private:
-    const VulkanContext& vk_;
-    Handle<VkSampler> sampler_;
-    Handle<VkDescriptorSetLayout> set_layout_;
-    Handle<VkDescriptorPool> pool_;
-    PipelineBuilder::Result pipeline_;
+    const lab::VulkanContext& vk_;
+    lab::Handle<VkSampler> sampler_;
+    lab::Handle<VkDescriptorSetLayout> set_layout_;
+    lab::Handle<VkDescriptorPool> pool_;
+    lab::PipelineBuilder::Result pipeline_;
     std::map<VkImageView, VkDescriptorSet> sets_;  // written once, on first use
     uint32_t max_images_;
 };
-
-}  // namespace lab

@@ -3,14 +3,8 @@
 #include "offscreen.h"
 #include "shader.h"
 
-// SPIR-V of common/app/shaders/depth_view.*, compiled by CMake into uint32_t arrays.
-#include "depth_view_frag_spv.h"
-#include "depth_view_vert_spv.h"
-
 #include <algorithm>
 #include <stdexcept>
-
-namespace lab {
 
 namespace {
 constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -20,14 +14,14 @@ struct ViewConstants {  // depth_view.vert / .frag
 };
 }  // namespace
 
-DepthView::DepthView(const VulkanContext& vk, VkRenderPass pass, uint32_t max_images)
+DepthView::DepthView(const lab::VulkanContext& vk, VkRenderPass pass, uint32_t max_images, const std::string& shader_dir)
     : vk_(vk), sampler_(make_depth_sampler(vk, false, false)), max_images_(max_images) {
-    const std::vector<DescriptorBinding> bindings = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
-    set_layout_ = make_descriptor_set_layout(vk, bindings);
-    pool_ = make_descriptor_pool(vk, bindings, max_images);
-    const Handle<VkShaderModule> vert = make_shader_module(vk, depth_view_vert_spv, sizeof(depth_view_vert_spv));
-    const Handle<VkShaderModule> frag = make_shader_module(vk, depth_view_frag_spv, sizeof(depth_view_frag_spv));
-    pipeline_ = PipelineBuilder()
+    const std::vector<lab::DescriptorBinding> bindings = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+    set_layout_ = lab::make_descriptor_set_layout(vk, bindings);
+    pool_ = lab::make_descriptor_pool(vk, bindings, max_images);
+    const lab::Handle<VkShaderModule> vert = lab::load_shader(vk, shader_dir, "depth_view.vert");
+    const lab::Handle<VkShaderModule> frag = lab::load_shader(vk, shader_dir, "depth_view.frag");
+    pipeline_ = lab::PipelineBuilder()
                     .shaders(vert, frag)
                     .vertex_attributes(0)  // the rectangle comes from the vertex index
                     .descriptor_set(set_layout_)
@@ -48,8 +42,8 @@ void DepthView::draw(VkCommandBuffer cmd, const LayeredTarget& target, glm::vec2
         auto it = sets_.find(layer);
         if (it == sets_.end()) {
             if (sets_.size() >= max_images_) throw std::logic_error("DepthView: more images than max_images");
-            const VkDescriptorSet set = allocate_descriptor_set(vk_, pool_, set_layout_);
-            write_image_descriptors(vk_, set, 0, {{sampler_, layer, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}});
+            const VkDescriptorSet set = lab::allocate_descriptor_set(vk_, pool_, set_layout_);
+            lab::write_image_descriptors(vk_, set, 0, {{sampler_, layer, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}});
             it = sets_.emplace(layer, set).first;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &it->second, 0, nullptr);
@@ -60,5 +54,3 @@ void DepthView::draw(VkCommandBuffer cmd, const LayeredTarget& target, glm::vec2
         vkCmdDraw(cmd, 6, 1, 0, 0);
     }
 }
-
-}  // namespace lab

@@ -1,0 +1,50 @@
+// texture.h — a texture map on the GPU: the image from pixels, with its mip chain.
+//
+// The Vulkan half of lab 3's lesson (texture.cpp): a staging buffer the CPU writes, an image in
+// device memory, layout transitions around the copy, the mip chain blitted level by level on the
+// GPU (or box-filtered on the CPU where the device can't), and the final layout the fragment
+// shader samples in. The sampler that reads it is sampler_cache.h.
+//
+// A colour map (albedo, emissive) is 8-bit RGBA in a *_SRGB format: the sampler decodes sRGB to
+// linear before it filters, so filtering and lighting happen in linear colour. A data map
+// (specular: a factor in [0, 1], not a colour) is *_UNORM: its bytes / 255 are the numbers
+// (docs/lighting.md).
+#pragma once
+
+#include "buffer.h"
+#include "image_io.h"
+#include "vk_context.h"
+
+#include <cstdint>
+
+// How the mip chain is made: blits on the GPU (vkCmdBlitImage, linear filter) when the format
+// supports linear blits and every level halves both sides exactly, else the box filter below on
+// the CPU. (A linear blit from an odd size samples two texels where the box needs three.)
+enum class MipSource { Auto, Cpu };
+
+// What a map's texels are: a colour (sRGB-encoded) or data (linear numbers).
+enum class TexelEncoding { Srgb, Linear };
+
+struct Texture {
+    lab::Image image;  // R8G8B8A8 _SRGB or _UNORM, SHADER_READ_ONLY_OPTIMAL, the view covers every level
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint32_t levels = 1;
+};
+
+// floor(log2(max(width, height))) + 1: levels down to 1×1.
+uint32_t mip_level_count(uint32_t width, uint32_t height);
+
+// The next level of `image` on the CPU: the box filter. Level size max(⌊w/2⌋, 1) × max(⌊h/2⌋, 1);
+// each texel is the mean of the parent area it covers, w/⌊w/2⌋ × h/⌊h/2⌋ texels, with partly
+// covered texels weighted by the part (an even side: 2 texels; 3 → 1: all three; 5 → 2: 1, 1, ½).
+// sRGB is decoded to linear before averaging and encoded after; alpha and linear data as they are.
+lab::Image8 downsample(const lab::Image8& image, TexelEncoding encoding);
+// True when a linear blit makes exactly that level from `width` × `height`: each side even, or 1.
+bool blit_halves_exactly(uint32_t width, uint32_t height);
+
+// Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain: blits where
+// the device has linear blits for the format, else the CPU fallback (`--dev-no-blit` makes a
+// device without them, so tests run that path on any device).
+Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto,
+                       TexelEncoding encoding = TexelEncoding::Srgb);
