@@ -39,7 +39,7 @@ glm::dmat4 look_at_camera_to_world(const glm::dvec3& eye, const glm::dvec3& targ
         const glm::dvec3 axis = f_along_z ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 0.0, 1.0);
         up = side * axis;
     }
-    // EXERCISE look_at: the camera's axes from f and up (right r, true up u; cross products), then C = [r u −f eye] as columns. Checked by LookAt.*, Lab1Render.DefaultScene.
+    // EXERCISE look_at: which unit axes (right, true up, back) does the camera have, given f and the up hint up, and where do they and eye go in c? Read this lab's README "Look-At mode", glm::lookAt's documentation (it builds the inverse). Wrong: the target off the image centre, the scene upside down or skewed, or an empty picture. Checked by LookAt.*, Lab1Render.DefaultScene.
     // STUB: glm::dmat4 c = glm::translate(glm::dmat4(1.0), eye);  // placed at the eye, but always looking down −Z
     // Orthonormal basis: r ⟂ f and u ⟂ both; r, u, −f is right-handed.
     const glm::dvec3 r = glm::normalize(glm::cross(f, up));
@@ -60,7 +60,7 @@ glm::dmat4 transform_camera_to_world(const glm::dvec3& position, double yaw_deg,
     // Read right to left: roll about the view axis first, then pitch about the
     // camera's X, then yaw about world Y, then move to the position. Yaw last
     // means "turn left/right" always turns about world up, like a person.
-    // EXERCISE transform: C = T(position)·Ry(yaw)·Rx(pitch)·Rz(roll) with glm::translate and glm::rotate (angles in radians()). Checked by Transform.*, Lab1Render.TransformCameraYawPitchRoll.
+    // EXERCISE transform: the camera-to-world matrix from position, yaw_deg, pitch_deg, roll_deg: about which axis does each angle turn, in which order, in what unit for glm::rotate? Read this lab's README "Transform mode", glm::rotate's documentation. Wrong: each angle alone looks right but together they tilt the horizon, or the view swings wildly. Checked by Transform.*, Lab1Render.TransformCameraYawPitchRoll.
     // STUB: return glm::translate(glm::dmat4(1.0), position);  // the angles are ignored
     const glm::dmat4 t = glm::translate(glm::dmat4(1.0), position);
     const glm::dmat4 ry = glm::rotate(glm::dmat4(1.0), radians(yaw_deg), glm::dvec3(0.0, 1.0, 0.0));
@@ -95,7 +95,7 @@ glm::dmat4 Camera::camera_to_world() const {
 // Rᵀ·T(−p); glm::inverse computes the same in double.)
 
 glm::dmat4 Camera::projection(double aspect) const {
-    // EXERCISE projection: a right-handed perspective with depth in [0, 1] (glm::perspectiveRH_ZO, fov in radians()), then flip Y for Vulkan. Checked by Projection.*, Lab1Render.DefaultScene.
+    // EXERCISE projection: the camera → clip matrix from fov_y_deg, aspect, near_plane, far_plane: which GLM perspective fits a right-handed camera and Vulkan's depth range? Which way does Vulkan's clip-space Y point? Read GLM's matrix_clip_space docs, the Vulkan spec's "Coordinate Transformations". Wrong: the scene upside down, stretched, or gone. Checked by Projection.*, Lab1Render.DefaultScene.
     // STUB: glm::dmat4 p(1.0);  // no perspective at all
     glm::dmat4 p = glm::perspectiveRH_ZO(radians(fov_y_deg), aspect, near_plane, far_plane);
     p[1][1] *= -1.0;  // Vulkan's framebuffer Y points down; flip so world +Y is up on screen
@@ -116,7 +116,7 @@ void Camera::set_mode(Mode new_mode) {
         // Recover the angles of R = Ry(yaw)·Rx(pitch)·Rz(roll) from its columns.
         // The back axis is R·(0,0,1) = (cos p·sin y, −sin p, cos p·cos y), so:
         position = p;
-        // EXERCISE mode_switch: pitch and yaw from the back axis, then roll from what is left of r once yaw and pitch are undone. Checked by ModeSwitch.*.
+        // EXERCISE mode_switch: the yaw_deg, pitch_deg, roll_deg that rebuild this pose in the Transform order: what does back tell about pitch and yaw, what is left of r once they are undone, what range do std::asin, std::atan2 cover? Read this lab's README "Switching without a jump". Wrong: pressing C makes the view jump, flip or lose its roll, above all looking down. Checked by ModeSwitch.*.
         // STUB: yaw_deg = pitch_deg = roll_deg = 0.0;  // the view jumps
         pitch_deg = degrees(std::asin(std::clamp(-back.y, -1.0, 1.0)));
         // At pitch ±90° (gimbal lock) yaw and roll turn about the same axis, and back.x,

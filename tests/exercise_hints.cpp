@@ -5,7 +5,7 @@
 // (a student copy has "// TODO EXERCISE ..." there). A failing test whose name matches one of the
 // "Checked by" patterns prints, for example:
 //     [ exercise ] this test grades exercise `attenuation`: shaders/lab2_lighting/lighting.glsl:97,
-//                  still the stub (TODO). Hint: 1 / (c + l·d + q·d²) ...
+//                  still the stub (TODO). Hint: what fraction of a light's radiance is left ...
 #include <gtest/gtest.h>
 
 #include <fnmatch.h>

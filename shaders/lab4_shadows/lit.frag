@@ -27,7 +27,7 @@ layout(set = 1, binding = 2) uniform sampler2D emissive_map;
 // line up, so the tiling is much harder to see.
 vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
     if (!DISTORTED) return texture(albedo_map, uv).rgb;
-    // EXERCISE distorted_uv: with (u, v) = uv, amplitude (k0.xy), frequency (k0.zw), position_frequency (k1.xy), scales (k1.zw), weights (k2.xy) and what uv_offset's whole repeats change (phases k3.xy, lookup offsets k4.xy, k4.zw): d = uv + (k0.x·sin(k0.z·v + k1.x·P.y + k3.x), k0.y·cos(k0.w·u + k1.y·P.x + k3.y)), then mix(mix(A(d), A(k1.z·uv + k4.xy), k2.x), A(k1.w·uv + k4.zw), k2.y). Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers, Lab3Render.DistortedSamplingWholeOffsetRepeat, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.DistortedSamplingHugeOffset.
+    // EXERCISE distorted_uv: the seed's distorted albedo: which lookups at uv and P, wobbled or scaled, blended how (GpuMaterial::distortion)? Read this lab's README "The equation". Wrong: plain tiling, or a jump as uv_offset moves a whole repeat. Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers, Lab3Render.DistortedSamplingWholeOffsetRepeat, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.DistortedSamplingHugeOffset.
     // STUB: return texture(albedo_map, uv).rgb;  // no distortion: the tiling shows as plainly as without it
     const vec4 k0 = m.distortion[0], k1 = m.distortion[1], k2 = m.distortion[2], k3 = m.distortion[3], k4 = m.distortion[4];
     const vec2 d = uv + vec2(k0.x * sin(k0.z * uv.y + k1.x * P.y + k3.x), k0.y * cos(k0.w * uv.x + k1.y * P.x + k3.y));
@@ -39,11 +39,11 @@ vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
 // a = albedo·A(uv'), s = specular·S(uv'), e = emissive + emissive_strength·E(uv') with
 // uv' = uv·uv_scale + uv_offset; a map the material lacks is not sampled at all.
 Material textured(Material m, vec2 uv, vec3 P) {
-    // EXERCISE uv_transform: uv' = uv·uv_scale + uv_offset, with uv_transform = (scale.x, scale.y, offset.x, offset.y). Checked by Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
+    // EXERCISE uv_transform: the UV the maps are read at: uv tiled by uv_scale and shifted by uv_offset: which comes first, where are they in m.uv_transform? Read docs/scene-format.md (uv_scale), the Vulkan spec's "Wrapping Operation". Wrong: the map once per object whatever uv_scale says, or shifted by the wrong amount. Checked by Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
     // STUB: // the UVs as they are: no tiling, no shift
     uv = uv * m.uv_transform.xy + m.uv_transform.zw;
     // END EXERCISE
-    // EXERCISE texture_terms: albedo ×= A(uv) (albedo_texel), specular ×= S(uv), emissive += emissive_strength (distortion[2].z)·E(uv), each only if the material has that map (ALBEDO_MAP, ...). Checked by Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
+    // EXERCISE texture_terms: the material with its maps: does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…)? Read docs/lighting.md "Lab 3: textured terms". Wrong: plain colours, a washed-out map, a grid that does not glow. Checked by Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
     // STUB: // the maps are not read: every textured material shows its plain colours
     if (ALBEDO_MAP) m.albedo.rgb *= albedo_texel(m, uv, P);
     if (SPECULAR_MAP) m.specular.rgb *= texture(specular_map, uv).rgb;
