@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# lab4_shadows.sh — what shadows cost, measured in ONE run (lab4_shadows/README.md, "Figures"):
+# lab4_shadows.sh — what shadows cost, measured in ONE run (docs/performance.md, "Lab 4: what shadows cost"):
 #   lab3      lab 3 on its default scene
 #   lab4_on3  lab 4 on lab 3's default scene (no light casts shadows: must cost ≤ 1.10 × lab 3)
 #   off       lab 4's default scene with every light's cast_shadows off (no pass, no lookup)

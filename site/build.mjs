@@ -6,8 +6,9 @@
 // exercises come from `scripts/exercise.sh --list`), the docs (docs/X.md → X.html), each lesson
 // diff of docs/diffs/ side by side (diff-A-B.html: diff2html, the manifest docs/diffs/lessons.md's
 // reading guide above each file, in the diff's order), the galleries (gallery.html and
-// gallery-<lab>.html from docs/images/<lab>/README.md), and performance.html (docs/tradeoffs.md,
-// then each plot of docs/tradeoffs/ with its CSV as a table). Markdown is rendered by markdown-it,
+// gallery-<lab>.html from docs/images/<lab>/README.md), performance.html (docs/performance.md, the
+// measurement log) and tradeoffs.html (docs/tradeoffs.md, then each plot of docs/tradeoffs/ with its
+// CSV as a table). Markdown is rendered by markdown-it,
 // `$…$` / `$$…$$` math by KaTeX at build time; diff2html's UI bundle colours the diffs' syntax in
 // the browser. Links between Markdown files become links between pages, pictures are copied in,
 // a linked source file gets a page that shows it. Every asset is copied into DIR, so the site
@@ -50,7 +51,8 @@ const labNumber = (lab) => parseInt(lab.slice(3), 10);
 const diffs = labs.slice(1).map((b, i) => ({ a: labs[i], b, file: `docs/diffs/${labs[i]}-${b}.diff` }))
   .filter((d) => exists(d.file));
 const pageOf = new Map([['README.md', 'index.html'], ['docs/diffs/README.md', 'diffs.html'],
-  ['docs/diffs/lessons.md', 'lessons.html'], ['docs/tradeoffs.md', 'performance.html']]);
+  ['docs/diffs/lessons.md', 'lessons.html'], ['docs/performance.md', 'performance.html'],
+  ['docs/tradeoffs.md', 'tradeoffs.html']]);
 for (const lab of labs) if (exists(`${lab}/README.md`)) pageOf.set(`${lab}/README.md`, `${lab}.html`);
 for (const f of fs.readdirSync(path.join(root, 'docs'))) {
   if (f.endsWith('.md') && !pageOf.has(`docs/${f}`)) pageOf.set(`docs/${f}`, f.replace(/\.md$/, '.html'));
@@ -84,7 +86,7 @@ function siteTarget(repoPath, hash) {
     return `src/${repoPath}/index.html`;
   }
   const csv = repoPath.match(/^docs\/tradeoffs\/(\w+)\.csv$/);
-  if (csv) return `performance.html#data-${csv[1]}`;
+  if (csv) return `tradeoffs.html#data-${csv[1]}`;
   if (!exists(repoPath)) return null;
   if (isBinary(repoPath)) return copyIn(repoPath);
   sourcePages.set(repoPath, `src/${repoPath}.html`);
@@ -194,7 +196,7 @@ for (const lab of labs) {
     diff ? `<a href="${pageOf.get(diff.file)}">the lesson as a diff: ${diff.a} → ${lab}</a>` : 'the first lab: no diff before it',
     pageOf.has(`docs/images/${lab}/README.md`) ? `<a href="${pageOf.get(`docs/images/${lab}/README.md`)}">its gallery</a>` : 'no gallery yet',
     '<a href="#graded-exercises">its graded exercises</a>',
-    exists(`docs/tradeoffs/${lab}.csv`) ? `<a href="performance.html#data-${lab}">its time-against-error data</a>` : null,
+    exists(`docs/tradeoffs/${lab}.csv`) ? `<a href="tradeoffs.html#data-${lab}">its time-against-error data</a>` : null,
   ].filter(Boolean);
   const exercises = exercisesOf(lab);
   let table = `<h2 id="graded-exercises">Graded exercises</h2>\n`;
@@ -289,12 +291,15 @@ Pareto front, the bold one is the lab's default.</p>
 <div class="table-scroll"><table class="csv"><thead><tr>${head.map((h) => `<th>${esc(h)}</th>`).join('')}</tr></thead>
 <tbody>\n${tr}\n</tbody></table></div></section>`;
 });
+markdownPage('docs/performance.md', 'performance.html');
 markdownPage('docs/tradeoffs.md', 'performance.html', `<h2 id="the-plots-and-their-data">The plots and their data</h2>\n${plotSections.join('\n')}`);
 
 // ---------------------------------------------------------------- the top README and the docs
 markdownPage('README.md', null);
 for (const [source, page] of pageOf) {
-  if (source.startsWith('docs/') && source.split('/').length === 2 && page !== 'performance.html') markdownPage(source, null);
+  if (source.startsWith('docs/') && source.split('/').length === 2 && !['performance.html', 'tradeoffs.html'].includes(page)) {
+    markdownPage(source, null);
+  }
 }
 
 // ---------------------------------------------------------------- pages that show a linked file or folder
