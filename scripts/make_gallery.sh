@@ -8,9 +8,15 @@
 #
 # A picture is a scene: docs/images/<lab>/scenes/NAME.json gives NAME.png, and default.png is the
 # lab's own default scene (scenes/<lab>.json). Each is rendered headless at 480×270 with
-# validation on. --check renders again and compares with tests/tools/lab_compare: like the render
-# tests, at most 0.5 % of the pixels may differ by more than 2/255 (a real GPU rasterizes a few
-# edge pixels differently; lavapipe gives the same bytes). It also checks that the gallery page
+# validation on, with the shaders of the build it is given (--dev-shader-dir $build/shaders/<lab>,
+# not the folder compiled into the binary). A picture that needs more than its scene (lab 4's
+# shadow-map view is a developer flag, not a scene key) has a NAME.args next to NAME.json: extra
+# command-line arguments, split at spaces and newlines (no quoting), lines starting with '#'
+# ignored; e.g. `--dev-shadow-view 0`.
+#
+# --check renders again and compares with tests/tools/lab_compare: like the render tests, at most
+# 0.5 % of the pixels may differ by more than 2/255 (a real GPU rasterizes a few edge pixels
+# differently; lavapipe gives the same bytes). It also checks that the gallery page
 # shows every picture and names no missing one. A failed check leaves the new picture and a
 # heatmap of the difference in build/test_output/gallery/<lab>/.
 set -euo pipefail
@@ -38,14 +44,20 @@ for lab in "${labs[@]}"; do
   [ -d "$dir/scenes" ] || { echo "gallery: $lab has no $dir/scenes (no pictures)"; continue; }
   exe="$build/$lab/$lab"
   [ -x "$exe" ] || { echo "gallery: $exe is not built" >&2; exit 2; }
+  shaders="$build/shaders/$lab"
+  [ -d "$shaders" ] || { echo "gallery: $shaders is not built" >&2; exit 2; }
   out="$build/test_output/gallery/$lab"
   mkdir -p "$out"
   pictures=("default:scenes/$lab.json")
   for s in "$dir"/scenes/*.json; do pictures+=("$(basename "$s" .json):$s"); done
   for p in "${pictures[@]}"; do
     name="${p%%:*}" scene="${p#*:}"
-    if ! "$exe" --scene "$scene" --headless --validate --width $width --height $height \
-         --out "$out/$name.png" >"$out/$name.log" 2>&1; then
+    extra=()
+    if [ -f "$dir/scenes/$name.args" ]; then
+      read -r -d '' -a extra < <(grep -v '^[[:space:]]*#' "$dir/scenes/$name.args") || true
+    fi
+    if ! "$exe" --dev-shader-dir "$shaders" --scene "$scene" --headless --validate \
+         --width $width --height $height "${extra[@]}" --out "$out/$name.png" >"$out/$name.log" 2>&1; then
       echo "FAIL $lab/$name: the lab failed on $scene: $(tail -n 1 "$out/$name.log")"
       failures=$((failures + 1))
       continue
