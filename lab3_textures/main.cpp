@@ -1,11 +1,9 @@
 // Lab 3 — textures.
 //
-// Lab 2's lit scene, now textured: albedo, specular and emissive maps from image
-// files or procedural sources, mipmaps, anisotropic filtering, wrap modes and the
-// seed's distorted-UV multi-sampling (editable in the "Textures" panel, with a
-// mip-level view). The Vulkan half is here too: the upload and mip chain in
-// texture.cpp, the samplers in sampler_cache.cpp. The rest (the Vulkan context,
-// window, UI, scene file, image loading) comes from common/.
+// Lab 2's lit scene, now textured: albedo, specular and emissive maps, mipmaps,
+// anisotropic filtering, wrap modes and the seed's distorted-UV multi-sampling
+// ("Textures" panel, with a mip-level view). The upload and the mip chain are in
+// texture.cpp, the samplers in sampler_cache.cpp; the rest comes from common/.
 //
 // Controls: W/S forward/back, A/D strafe, Space/Shift up/down (world Y),
 // left-drag rotates (Look-At: orbits the target), wheel changes the distance

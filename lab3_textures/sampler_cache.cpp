@@ -26,6 +26,8 @@ VkSampler SamplerCache::get(const lab::SamplerDesc& desc) {
         warnings_.push_back(line);
         std::fprintf(stderr, "warning: %s\n", line);
     }
+    // EXERCISE sampler_settings: fill `info` from `desc`: which filter for magnification and minification, which mipmap mode, which address mode on each axis, whether anisotropy is on and how much (use `anisotropy` above, already clamped), and how "mipmaps": "none" keeps the sampler on level 0. Read VkSamplerCreateInfo in the spec ("Samplers") and lab::SamplerDesc in scene.h. Wrong: every texture blocky and shimmering, mirror wrap repeating, the far floor a moiré. Checked by Lab3Render.MinifiedFloorTrilinear, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.AlbedoMapMagnified.
+    // STUB: VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // nearest, repeat, level 0 only
     using S = lab::SamplerDesc;
     const VkFilter filter = desc.filter == S::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
     const VkSamplerAddressMode wrap = desc.wrap == S::Wrap::Repeat  ? VK_SAMPLER_ADDRESS_MODE_REPEAT
@@ -42,6 +44,7 @@ VkSampler SamplerCache::get(const lab::SamplerDesc& desc) {
     // "mipmaps": "none" reads level 0 only (the spec's way to switch mipmapping off).
     info.maxLod = desc.mipmaps == S::Mipmaps::None ? 0.0f : VK_LOD_CLAMP_NONE;
     info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
+    // END EXERCISE
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(vk_.device(), &info, nullptr, &sampler));
     VkDevice device = vk_.device();

@@ -11,15 +11,11 @@ const char* const kFilters[] = {"nearest", "linear"};
 const char* const kMipmaps[] = {"none", "nearest", "linear"};
 const char* const kWraps[] = {"repeat", "clamp", "mirror"};
 
-// A map path or "procedural:NAME"; Enter applies it, an empty field removes the map.
+// A map path or "procedural:NAME"; Enter applies it, an empty field removes the map, an unknown
+// procedural name is ignored (a scene file would be rejected).
 bool edit_map(const char* label, std::string& map) {
     std::string value = map;
-    if (!lab::ui::edit_on_enter(label, value)) return false;
-    const std::string prefix = "procedural:";
-    const auto& names = lab::procedural_texture_names();
-    if (value.rfind(prefix, 0) == 0 &&
-        std::find(names.begin(), names.end(), value.substr(prefix.size())) == names.end())
-        return false;  // an unknown procedural name is ignored (a scene file would be rejected)
+    if (!lab::ui::edit_on_enter(label, value) || !lab::known_procedural_or_path(value)) return false;
     map = value;
     return true;
 }

@@ -74,6 +74,8 @@ LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>
     for (const Box& b : casters) c.add(lab::transformed(b, view));
     for (const Box& b : receivers) r.add(lab::transformed(b, view));
     if (casters.empty()) c = r;
+    // EXERCISE directional_box: the orthographic box in light space (x, y across the beam, z towards the light): across the beam, where can a caster (box c) shadow a receiver (box r)? Along it, from which depth to which must the map hold depths? Keep a box that is empty in some axis valid. Read this lab's README "Two passes" and kFarMargin above; test_light_frustum.cpp says what the box must hold. Wrong: shadows cut off at an edge or missing far from the origin, or coarse blocky shadows (a box much larger than needed). Checked by LightFrustum.OffCentreDirectionalBoxHoldsItsCasters, Lab4Stress.DirectionalLightOverCastersFarFromTheOrigin.
+    // STUB: glm::dvec3 lo(-1.0), hi(1.0);  // a fixed 2-unit box round the scene's centre
     // Across the beam: only where a caster can shadow a receiver (both boxes overlap); a receiver
     // outside is lit anyway (outside the map = lit). Along it: from the caster nearest the light
     // to a little beyond the farthest caster (farther receivers: depth clamped to 1, see fit_depth).
@@ -86,6 +88,7 @@ LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>
         lo[i] -= 1e-4 * size;
         hi[i] += 1e-4 * size;
     }
+    // END EXERCISE
     f.near_plane = -hi.z;  // view space looks down −z
     f.far_plane = -lo.z;
     f.view_projection = flip_y(glm::orthoRH_ZO(lo.x, hi.x, lo.y, hi.y, f.near_plane, f.far_plane)) * view *

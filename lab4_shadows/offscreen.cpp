@@ -38,7 +38,14 @@ lab::Handle<VkRenderPass> make_offscreen_pass(const lab::VulkanContext& vk, VkFo
     const VkPipelineStageFlags tests = VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
     const VkAccessFlags depth_rw = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     const VkAccessFlags color_rw = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    // The barrier between the passes. A render pass's subpass dependencies with VK_SUBPASS_EXTERNAL
+    // order it against the commands before and after it: here the camera's pass of the previous
+    // frame (which read this map) must finish reading before this pass clears and writes it, and
+    // this pass's depth writes must be visible to the next pass's shader reads.
     VkSubpassDependency dependencies[2] = {};
+    // EXERCISE pass_dependencies: fill both dependencies: which stages and accesses came before (earlier shader reads of the map, earlier depth and colour writes) and must finish before this pass's fragment tests write, and which stages of the passes after it read what this pass wrote? Read "Render Pass Creation" / VkSubpassDependency and "Synchronization and Cache Control" in the spec; `shaders`, `tests`, `depth_rw`, `color_rw` above are the pieces. Wrong: the synchronization validation layer reports READ_AFTER_WRITE / WRITE_AFTER_READ hazards (every lab 4 test fails on them); on a real GPU shadows flicker or lag a frame. Checked by Lab4Shadows.DirectionalLightMatchesTheReference, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply.
+    // STUB: dependencies[0] = {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, 0, 0};
+    // STUB: dependencies[1] = {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, 0, 0};
     dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;  // earlier reads (and this pass's earlier use) first
     dependencies[0].dstSubpass = 0;
     dependencies[0].srcStageMask = shaders | tests | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -51,6 +58,7 @@ lab::Handle<VkRenderPass> make_offscreen_pass(const lab::VulkanContext& vk, VkFo
     dependencies[1].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | (color ? VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT : 0);
     dependencies[1].dstStageMask = shaders;
     dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    // END EXERCISE
 
     return lab::create_render_pass(vk, uint32_t(attachments.size()), attachments.data(), subpass, dependencies);
 }
@@ -59,11 +67,15 @@ lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool lin
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = info.minFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    // Outside the map: depth 1 (nothing there), transmittance 1: lit.
+    // Outside the map a lookup reads the border colour.
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+    // EXERCISE comparison_sampler: with `compare`, the sampler itself compares the lookup's reference depth (the point's depth from the light) with the stored one and returns 1 (lit) or 0 per texel, before filtering. Which compare op says "lit" for a point no farther than the nearest caster, and what should a lookup outside the map return (clamp-to-border: which border colour)? Read VkSamplerCreateInfo (compareEnable, compareOp) and "Depth Compare Operation" in the spec. Wrong: with the bilinear filter everything is lit or shadows are inverted; receivers beyond the map go dark. Checked by Lab4Shadows.BilinearComparisonMatchesTheReference, Lab4Shadows.ReceiverOutsideTheShadowMapsCoverageIsLit.
+    // STUB: info.compareEnable = compare;
+    // STUB: info.compareOp = VK_COMPARE_OP_ALWAYS;  // every texel "lit"; border: transparent black
     info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     info.compareEnable = compare;
     info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // 1 where reference ≤ stored depth: lit
+    // END EXERCISE
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(vk.device(), &info, nullptr, &sampler));
     VkDevice device = vk.device();

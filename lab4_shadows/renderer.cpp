@@ -130,6 +130,7 @@ void Renderer::load_textures(const Lighting& lighting) {
     }
     if (textured > 0) {
         white_ = upload_texture(vk_, lab::Image8{1, 1, {255, 255, 255, 255}}, false);
+        // Set 1: a material's three maps, each a combined image sampler the fragment shader reads.
         const std::vector<lab::DescriptorBinding> maps(3, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT});
         texture_layout_ = lab::make_descriptor_set_layout(vk_, maps);
         texture_pool_ = lab::make_descriptor_pool(vk_, maps, textured);
@@ -139,10 +140,23 @@ void Renderer::load_textures(const Lighting& lighting) {
         material_maps_.push_back({!m.albedo_map.empty(), !m.specular_map.empty(), !m.emissive_map.empty(), m.distorted});
         if (!m.has_maps()) continue;
         material_sets_.back() = lab::allocate_descriptor_set(vk_, texture_pool_, texture_layout_);
+        // A combined image sampler is three things: the sampler (how to read; identical settings
+        // share one VkSampler), the image view (what to read) and the layout the image will be in
+        // when the shader reads it. One write per binding, all three in one update.
         const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
-        for (uint32_t binding = 0; binding < 3; ++binding)  // identical samplers are one VkSampler
-            lab::write_image_descriptor(vk_, material_sets_.back(), binding, samplers_.get(m.sampler),
-                                        (maps[binding]->empty() ? white_ : textures_.at({*maps[binding], encodings[binding]})).image.view);
+        VkDescriptorImageInfo images[3];
+        VkWriteDescriptorSet writes[3];
+        for (uint32_t binding = 0; binding < 3; ++binding) {
+            const Texture& t = maps[binding]->empty() ? white_ : textures_.at({*maps[binding], encodings[binding]});
+            images[binding] = {samplers_.get(m.sampler), t.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            writes[binding] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[binding].dstSet = material_sets_.back();
+            writes[binding].dstBinding = binding;  // albedo 0, specular 1, emissive 2 (lit.frag)
+            writes[binding].descriptorCount = 1;
+            writes[binding].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            writes[binding].pImageInfo = &images[binding];
+        }
+        vkUpdateDescriptorSets(vk_.device(), 3, writes, 0, nullptr);
     }
     warnings_.insert(warnings_.end(), samplers_.warnings().begin(), samplers_.warnings().end());
     if (textured > 0)

@@ -21,8 +21,14 @@ uint8_t linear_to_srgb(double c) {
     return uint8_t(std::lround(e * 255.0));
 }
 
+// The image's format says how the sampler turns a texel's bytes into numbers. A _SRGB format
+// decodes them through the sRGB curve before filtering (the spec's "sRGB EOTF"), a _UNORM one
+// divides by 255. The bytes are the same; only their meaning differs.
 VkFormat format_of(TexelEncoding encoding) {
+    // EXERCISE texel_format: which VkFormat does a colour map (its bytes sRGB-encoded, as image files store them) get, and which a data map such as specular (its bytes are plain numbers)? Read texture.h's header comment, docs/lighting.md on colour spaces, the Vulkan spec's "Conversion to RGBA" (sRGB). Wrong: textured surfaces look washed out and too bright, their mip levels too light. Checked by Lab3Render.AlbedoImageTimesColour, Lab3Render.AlbedoMapMagnified.
+    // STUB: return VK_FORMAT_R8G8B8A8_UNORM;  // every map read as plain numbers
     return encoding == TexelEncoding::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    // END EXERCISE
 }
 
 bool can_blit_linear(const lab::VulkanContext& vk, VkFormat format) {
@@ -114,16 +120,24 @@ Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, 
         offset += chain[level].rgba.size();
     }
 
-    // TRANSFER_SRC: the blits read the levels above; tests read every level back.
+    // The image lives in device memory the CPU cannot write (on a GPU: fast, not mappable), so the
+    // pixels travel through a host-visible staging buffer and a copy command. Its usage says
+    // everything it will be: sampled, a copy's destination, and TRANSFER_SRC (the blits read the
+    // levels above; tests read every level back).
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     t.image = lab::create_image_2d(vk, {t.width, t.height}, format, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
     const VkImage image = t.image.image;
     vk.run_once([&](VkCommandBuffer cmd) {
         const auto transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        // A new image's layout is UNDEFINED (its contents may be discarded); a copy writes only
+        // into TRANSFER_DST_OPTIMAL. The barrier changes the layout of every level and orders the
+        // change before the copy's writes.
         lab::image_barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, transfer);
         vkCmdCopyBufferToImage(cmd, staging.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies.size()),
                                copies.data());
+        // A level is done when it is in SHADER_READ_ONLY_OPTIMAL, its last write (copy or blit)
+        // made visible to the fragment shader's reads.
         const auto to_shader = [&](uint32_t level, VkImageLayout from, VkAccessFlags access) {
             lab::image_barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
                     VK_ACCESS_SHADER_READ_BIT, transfer, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
@@ -134,7 +148,12 @@ Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, 
             return;
         }
         // Each level is a linear-filtered blit of the one above at half the size: for even sizes
-        // exactly the 2×2 box (an sRGB blit decodes, filters in linear colour, encodes).
+        // exactly the 2×2 box (an sRGB blit decodes, filters in linear colour, encodes). A level
+        // is read by one blit and written by the next, so it changes layout in between
+        // (TRANSFER_DST → TRANSFER_SRC), and the barrier makes the write visible to the read.
+        // EXERCISE mip_chain: record the chain: for each level from 1 up, what must happen to the level above before a blit may read it, which rectangle goes to which, and when is a level done (ready for the fragment shader)? Read vkCmdBlitImage and VkImageBlit in the spec ("Copying Data Between Images"), and what to_shader() above does. Wrong: the far floor turns black or noisy (levels 1+ never written), or the validation layer reports a layout mismatch. Checked by MipChain.EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths, Lab3Render.MinifiedFloorTrilinear.
+        // STUB: for (uint32_t level = 0; level < t.levels; ++level)  // only level 0 holds pixels
+        // STUB:     to_shader(level, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT);
         int32_t w = int32_t(t.width), h = int32_t(t.height);
         for (uint32_t level = 1; level < t.levels; ++level) {
             lab::image_barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -152,6 +171,7 @@ Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, 
             h = nh;
         }
         to_shader(t.levels - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT);
+        // END EXERCISE
     });
     return t;
 }

@@ -174,6 +174,18 @@ TEST(Lab4Shadows, PointLightMatchesTheReference) {
     expect_matches_reference("point", light);
 }
 
+// The bilinear filter: each PCF tap is one lookup through the comparison sampler (compareEnable,
+// a linear filter), which compares the 2×2 texels around the tap and filters the results. Its
+// edges are as sharp as the nearest filter's to within a texel (texels here are under a pixel).
+TEST(Lab4Shadows, BilinearComparisonMatchesTheReference) {
+    for (const auto& [name, light] : {std::pair<std::string, json>{"bilinear_directional", directional({-0.6, -1, -0.35})},
+                                      {"bilinear_spot", spot({1.5, 4, 2.5}, {-1.5, -4, -2.5}, 40)}}) {
+        json l = light;
+        l["shadow"] = {{"filter", "bilinear"}};
+        expect_matches_reference(name, l);
+    }
+}
+
 // --- bias: no acne, no peter-panning -------------------------------------------------------------
 
 TEST(Lab4Shadows, NoAcneOnALitPlaneAt80Degrees) {

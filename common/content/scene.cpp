@@ -39,6 +39,13 @@ const std::vector<std::string>& procedural_texture_names() {
     return names;
 }
 
+bool known_procedural_or_path(const std::string& map) {
+    const std::string prefix = "procedural:";
+    if (map.rfind(prefix, 0) != 0) return true;
+    const auto& names = procedural_texture_names();
+    return std::find(names.begin(), names.end(), map.substr(prefix.size())) != names.end();
+}
+
 namespace {
 
 using json = nlohmann::json;
@@ -414,9 +421,8 @@ std::string read_map(const Context& ctx, const json& value, const std::string& p
     const std::string prefix = "procedural:";
     if (text.rfind(prefix, 0) == 0) {
         const std::string name = text.substr(prefix.size());
-        const auto& names = procedural_texture_names();
-        if (std::find(names.begin(), names.end(), name) == names.end())
-            fail(ctx, path, "unknown procedural texture '" + name + "'" + suggestion(name, names));
+        if (!known_procedural_or_path(text))
+            fail(ctx, path, "unknown procedural texture '" + name + "'" + suggestion(name, procedural_texture_names()));
         return text;
     }
     fs::path file(text);

@@ -118,6 +118,9 @@ struct MaterialDesc {
 
 // The procedural texture names a map may use after "procedural:" (docs/scene-format.md).
 const std::vector<std::string>& procedural_texture_names();
+// False for "procedural:NAME" with a NAME not in that list (the scene loader's error); true for
+// anything else (an image path, checked when it is loaded).
+bool known_procedural_or_path(const std::string& map);
 
 // Lab 2: which shading and lighting model a scene uses (docs/lighting.md).
 struct LightingDesc {
