@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# exercise.sh — a student copy of the project, with a lab's exercises cut out.
+# exercise.sh — a student copy of the project, with a lab's exercises cut out and no answers in it.
 #
 #   bash scripts/exercise.sh LAB [NAME…] [--out DIR]   # write the copy (default DIR: student/<lab>)
 #   bash scripts/exercise.sh --list [LAB]               # the exercises, with file, line and tests
 #   bash scripts/exercise.sh --stub FILE NAME…          # print FILE with those exercises stubbed
+#   bash scripts/exercise.sh --left-out LAB             # what a copy of LAB leaves out (paths)
+#   bash scripts/exercise.sh --check-copy DIR LAB       # check a written copy for answers
+#   bash scripts/exercise.sh --check-copies             # write and check a copy of every lab with
+#                                                       # exercises (CTest: student_copy_no_answers)
 #   bash scripts/exercise.sh --prove BUILD_DIR LAB      # the grader's own test (CTest: grader_labN)
 #
 # LAB is 1, lab1 or lab1_camera. Without NAMEs every exercise of the lab is cut out.
@@ -17,6 +21,22 @@
 # "// TODO EXERCISE name: hint" line. The copy builds and runs, with a visibly wrong picture,
 # and `ctest --test-dir build -L labN` there is the grader: the tests named after "Checked by"
 # fail until the exercise is done, and say which exercise it is and where.
+#
+# What the copy of lab N holds: common/, labs 1..N-1 complete (their solutions are not secret
+# any more once lab N is handed out), lab N with its exercises stubbed, and the tests, scenes,
+# docs and scripts those labs use. What it leaves out, because it would hand out answers
+# (--left-out lists it; docs/solutions.md is the instructors' policy):
+#   - every file or folder named lab<K>_* or *_lab<K>_* with K > N: the later labs (lab N+1
+#     carries lab N complete), their shaders, scenes, test scenes, gallery pictures, bench scripts;
+#   - tests/ files that only later labs' tests use (every mention in tests/CMakeLists.txt inside an
+#     `if(TARGET lab<K>_…)` block, K > N), and scene folders (scenes/<dir>/) only later labs' scene
+#     files use;
+#   - docs/diffs/ (the diff lab N-1 → lab N is lab N's solution) and site/ (the course site builds
+#     pages from those diffs), whole: they are instructor material.
+# The copy has a .student-copy file (its lab): tests/CMakeLists.txt then disables the tests of the
+# whole project that a copy cannot pass (the diffs, the site, the architecture picture).
+# --check-copy checks a copy: nothing above is in it, each cut-out exercise is a TODO, and no text
+# file holds a line of a cut-out solution (see check_copy below).
 #
 # An exercise belongs to the first lab that has it (lab 2 carries lab 1's camera.cpp with its
 # markers; they are lab 1's exercises).
@@ -101,6 +121,223 @@ stub_file() {  # file names…
       print
     }
     END { if (inside) { print "exercise: unterminated EXERCISE in " FILENAME > "/dev/stderr"; exit 3 } }' "$file"
+}
+
+# ---------------------------------------------------------------- what a copy leaves out
+# The number of lab folder $1: lab2_lighting → 2.
+lab_number() { local n="${1%%_*}"; echo "${n#lab}"; }
+
+# Reads paths on stdin and prints those whose name (any name, not only the last part) is a later
+# lab's than lab $1 (a number): lab<K>_… or …_lab<K>_… with K > $1 ("lab1_camera-lab2_lighting.diff"
+# is lab 2's). The one rule for the later labs' folders, shaders, scenes, test scenes, gallery
+# pictures, trade-off figures and bench scripts, so a new file named like them is left out too.
+# With a second argument "keep", prints the others instead.
+later_lab_names() {
+  awk -v n="$1" -v keep="${2:-}" -F/ '{
+    later = 0
+    for (i = 1; i <= NF && !later; i++) {
+      rest = $i
+      while (!later && match(rest, /(^|_|-)lab[0-9]+_/)) {
+        k = substr(rest, RSTART, RLENGTH); gsub(/[^0-9]/, "", k)
+        later = (k + 0 > n)
+        rest = substr(rest, RSTART + RLENGTH)
+      }
+    }
+    if (later != (keep == "keep")) print
+  }'
+}
+
+# The project's files and folders, relative to the root, parents before children; without git
+# data, build outputs and student copies (what a copy is written from).
+project_paths() {
+  find . \( -path ./.git -o -path './build*' -o -path ./out -o -path ./student \) -prune -o -print |
+    sed -n 's|^\./||p'
+}
+
+# tests/ files that only the tests of labs after lab $1 (a number) use: every mention of them in
+# tests/CMakeLists.txt is inside an `if(TARGET lab<K>_…)` block with K > $1, so a copy without those
+# labs configures without them. A file mentioned anywhere else stays (better a harmless test file
+# too many than a copy that does not configure); so does a file CMake does not name (a header).
+later_test_files() {
+  awk -v n="$1" '
+    { sub(/#.*/, "") }  # CMake comments
+    /^[ \t]*if[ \t]*\(/ {
+      later[depth + 1] = later[depth]
+      if (match($0, /TARGET[ \t]+lab[0-9]+_/)) {
+        k = substr($0, RSTART, RLENGTH); gsub(/[^0-9]/, "", k)
+        if (k + 0 > n) later[depth + 1] = 1
+      }
+      depth++
+    }
+    /^[ \t]*(else|elseif)[ \t]*\(/ { later[depth] = later[depth - 1] }  # runs without that lab
+    /^[ \t]*endif[ \t]*\(/ { depth--; next }
+    {
+      line = $0
+      while (match(line, /[A-Za-z0-9_.\/${}-]+\.(cpp|h|py|sh|json|obj|cmake)/)) {
+        tok = substr(line, RSTART, RLENGTH); line = substr(line, RSTART + RLENGTH)
+        sub(/^\$\{CMAKE_CURRENT_SOURCE_DIR\}\//, "", tok)
+        if (tok ~ /\$/) continue  # a file outside tests/, or a name made up at configure time
+        seen[tok] = 1
+        if (!later[depth]) kept[tok] = 1
+      }
+    }
+    END { for (t in seen) if (!(t in kept)) print "tests/" t }' tests/CMakeLists.txt |
+    sort | while read -r f; do if [ -e "$f" ]; then echo "$f"; fi; done
+}
+
+# What a copy of lab $1 (a number) leaves out, one path a line (a folder stands for all it holds).
+left_out() {
+  local n="$1" d users
+  {
+    project_paths | later_lab_names "$n"
+    echo docs/diffs  # lab N-1 → lab N is lab N's solution; the earlier ones are instructor material
+    echo site        # the course site: its pages show every lab and the diffs
+    later_test_files "$n"
+    # A scene folder (models, textures) that only later labs' scene files use: every JSON file that
+    # names it ("textures/bricks.png") is left out. A folder no JSON file names stays.
+    for d in scenes/*/; do
+      d="${d%/}"
+      users=$(project_paths | grep '\.json$' | while read -r f; do
+        if grep -qF "$(basename "$d")/" "$f"; then echo "$f"; fi
+      done)
+      if [ -n "$users" ] && [ -z "$(later_lab_names "$n" keep <<<"$users")" ]; then echo "$d"; fi
+    done
+  } | topmost
+}
+
+# Paths on stdin, sorted, without those inside another one given (a folder stands for its files).
+topmost() {
+  grep . | sort -u | awk '{
+    path = $0; covered = 0
+    while (!covered && sub(/\/[^\/]*$/, "", path)) covered = (path in listed)
+    if (!covered) { listed[$0] = 1; print }
+  }'
+}
+
+# ---------------------------------------------------------------- checking a copy
+# Lines of a solution that a copy holds on purpose: "path-glob exercise". Keep it short; each
+# entry says why the copy cannot do without that file. A new exercise whose answer turns up in one
+# of these files fails the check until someone decides it belongs here.
+known_answers=(
+  # The grader's oracle (docs/testing.md): the CPU reference computes what the labs compute, in
+  # its own double-precision code, and every copy needs it to grade. Where there is only one way
+  # to write a formula, its line is the lab's line: the camera's columns, the light falloff.
+  "tests/reference/cpu_reference.cpp look_at"
+  "tests/reference/cpu_lighting.cpp attenuation"
+  # Lab 2's Phong shading (not an exercise) lights each fragment; the gouraud exercise does the
+  # same per vertex, so lit.frag is the example it follows.
+  "shaders/lab2_lighting/lit.frag gouraud"
+)
+
+# The solution lines of the exercises of lab $1 (a folder) and of every later lab, taken from this
+# (complete) project: name US file:line US the line without any whitespace. Only "substantive"
+# lines: 16 or more non-space characters. Shorter lines (braces, `return 1.0;`, `} else {`,
+# `float d = 0.0;` is 12) are everywhere in the project and say nothing about the answer, while
+# a line of 16 is already specific (`vec3 H = normalize(L + V);` is 22). A line that is also one
+# of the exercise's STUB lines is no answer: the copy has it on purpose.
+solution_lines() {
+  local lab="$1" l from=0 name file line hint tests
+  for l in "${labs[@]}"; do
+    [ "$l" = "$lab" ] && from=1
+    ((from)) || continue
+    exercises_of "$l" | while IFS=$'\037' read -r name file line hint tests; do
+      awk -v name="$name" -v first="$line" '
+        function bare(s) { gsub(/[ \t\r]+/, "", s); return s }
+        FNR < first { next }
+        FNR == first { next }  # the marker itself: the copy has its hint too
+        /^[ \t]*\/\/ END EXERCISE[ \t]*$/ { exit }
+        /^[ \t]*\/\/ STUB: / { s = $0; sub(/^[ \t]*\/\/ STUB: /, "", s); stub[bare(s)] = 1; next }
+        { code[++n] = bare($0); where[n] = FILENAME ":" FNR }
+        END {
+          for (i = 1; i <= n; i++)
+            if (length(code[i]) >= 16 && !(code[i] in stub)) printf "%s\037%s\037%s\n", name, where[i], code[i]
+        }' "$file"
+    done
+  done
+}
+
+# --check-copy DIR LAB: is DIR a copy of lab LAB (written by this script) without answers?
+#   (a) nothing --left-out lists is there, and no file or folder anywhere is named after a later lab;
+#   (b) every exercise of the lab is cut out: its file has the "// TODO EXERCISE name:" line;
+#   (c) no text file holds a solution line (solution_lines) of the lab's or a later lab's
+#       exercises, compared without whitespace, as part of any line: a doc that quotes the answer,
+#       a later lab's file, a diff, a bench script with a shader in it all count.
+# Prints one line per problem; exit 1 if there is one.
+check_copy() {
+  local dir="$1" lab="$2" n problems=0 p name file line hint tests
+  n=$(lab_number "$lab")
+  [ -d "$dir" ] || die "--check-copy: no folder $dir"
+  [ -f "$dir/.student-copy" ] || { echo "FAIL $dir has no .student-copy: not written by exercise.sh"; problems=$((problems + 1)); }
+
+  while read -r p; do
+    if [ -e "$dir/$p" ]; then echo "FAIL left in the copy: $p"; problems=$((problems + 1)); fi
+  done < <(left_out "$n")
+  while read -r p; do
+    echo "FAIL a later lab's file in the copy: $p"; problems=$((problems + 1))
+  done < <(cd "$dir" && find . -print | sed -n 's|^\./||p' | later_lab_names "$n" | topmost)
+
+  while IFS=$'\037' read -r name file line hint tests; do
+    if ! grep -qF "// TODO EXERCISE $name: " "$dir/$file" 2>/dev/null; then
+      echo "FAIL exercise $name is not cut out of $file"; problems=$((problems + 1))
+    fi
+  done < <(exercises_of "$lab")
+
+  local answers hits=""
+  answers=$(mktemp)
+  solution_lines "$lab" >"$answers"
+  if [ ! -s "$answers" ]; then
+    echo "FAIL no solution lines found for $lab's exercises: nothing to look for"; problems=$((problems + 1))
+  fi
+  # Every text file (grep -I: binary files such as the PNGs are no text), hidden ones too.
+  [ -s "$answers" ] && hits=$(cd "$dir" && grep -rIl --null '' . | xargs -0 -r awk -F '\037' '
+    FNR == NR { name[NR] = $1; where[NR] = $2; code[NR] = $3; n = NR; next }
+    {
+      s = $0; gsub(/[ \t\r]+/, "", s)
+      if (length(s) < 16) next
+      for (i = 1; i <= n; i++)
+        if (index(s, code[i])) printf "%s\037%d\037%s\037%s\n", substr(FILENAME, 3), FNR, name[i], where[i]
+    }' "$answers")
+  rm -f "$answers"
+  local path at where known reported=0
+  while IFS=$'\037' read -r path at name where; do
+    [ -n "$path" ] || continue
+    for known in "${known_answers[@]}"; do
+      # shellcheck disable=SC2053
+      if [[ "$path" == ${known%% *} && "$name" == "${known#* }" ]]; then
+        echo "known: $path:$at has a line of exercise $name ($where), on purpose (known_answers)"
+        continue 2
+      fi
+    done
+    reported=$((reported + 1))
+    ((reported <= 20)) && echo "FAIL answer in the copy: $path:$at holds a line of exercise $name ($where)"
+  done <<<"$hits"
+  ((reported > 20)) && echo "… and $((reported - 20)) more"
+  problems=$((problems + reported))
+  if ((problems)); then
+    echo "check-copy: $dir: $problems problem(s) (a copy of $lab must hold none of its answers)"
+    return 1
+  fi
+  echo "check-copy: $dir: no later lab, $(exercises_of "$lab" | wc -l) exercises cut out, no answers but the known ones"
+}
+
+# --check-copies (CTest: student_copy_no_answers): writes a copy of every lab that has exercises
+# into a temporary folder (no build: seconds) and checks it.
+check_copies() {
+  local tmp l failed=0 count=0
+  if [ -f .student-copy ]; then
+    echo "exercise: this is a student copy ($(head -n 1 .student-copy)): copies are written from the complete project (skipped)"
+    exit 77
+  fi
+  tmp=$(mktemp -d)
+  trap 'rm -rf "$tmp"' EXIT
+  for l in "${labs[@]}"; do
+    [ -n "$(exercises_of "$l")" ] || continue
+    count=$((count + 1))
+    bash "$root/scripts/exercise.sh" "$l" --out "$tmp/$l" >/dev/null || { echo "FAIL exercise.sh $l did not write a copy"; failed=1; continue; }
+    check_copy "$tmp/$l" "$l" || failed=1
+  done
+  ((count)) || { echo "FAIL no lab has exercises: nothing checked"; exit 1; }
+  exit "$failed"
 }
 
 # --prove BUILD LAB (the CTest test grader_labN): the grader really grades. With the complete lab
@@ -226,13 +463,29 @@ prove() {
 }
 
 case "${1:-}" in
+  --left-out)
+    [ $# -eq 2 ] || die "usage: exercise.sh --left-out LAB"
+    lab=$(resolve_lab "$2")  # on its own line: a bad LAB must stop here (exit 2)
+    left_out "$(lab_number "$lab")"
+    exit 0
+    ;;
+  --check-copy)
+    [ $# -eq 3 ] || die "usage: exercise.sh --check-copy DIR LAB"
+    lab=$(resolve_lab "$3")
+    check_copy "$2" "$lab"
+    exit $?
+    ;;
+  --check-copies)
+    [ $# -eq 1 ] || die "usage: exercise.sh --check-copies"
+    check_copies
+    ;;
   --prove)
     [ $# -eq 3 ] || die "usage: exercise.sh --prove BUILD_DIR LAB"
     prove "$2" "$(resolve_lab "$3")"
     exit 0
     ;;
   "" | -h | --help)
-    sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,42p' "$0" | sed 's/^# \{0,1\}//'
     exit 0
     ;;
   --list)
@@ -284,8 +537,13 @@ if [ -e "$out" ] && [ -n "$(ls -A "$out")" ]; then
 fi
 mkdir -p "$out"
 
-# The project without build outputs, student copies and git data.
+# The project without build outputs, student copies and git data; then without what would hand
+# out answers (left_out: the later labs and the instructor material, see the top of this file).
 tar -C "$root" --exclude='./build*' --exclude=./out --exclude=./student --exclude=./.git -cf - . | tar -C "$out" -xf -
+mapfile -t gone < <(left_out "$(lab_number "$lab")")
+for p in "${gone[@]}"; do rm -rf "${out:?}/$p"; done
+# Marks the copy (tests/CMakeLists.txt: the tests of the whole project are disabled there).
+printf '%s\n%s\n' "$lab" "${names[*]}" >"$out/.student-copy"
 
 echo "exercise: $lab, student copy in $out"
 declare -A done_files=()
@@ -300,9 +558,17 @@ for file in "${!done_files[@]}"; do
   stub_file "$file" ${done_files[$file]} >"$out/$file"
 done
 short="${lab%%_*}"
+earlier=""
+for l in "${labs[@]}"; do [ "$l" = "$lab" ] && break; earlier+="${earlier:+, }$l"; done
 cat <<EOF
+It holds common/, ${earlier:+the earlier labs complete ($earlier), }$lab with the exercises above cut out,
+and the tests, scenes, docs and scripts they use. Left out: the later labs (with their shaders,
+scenes, tests and gallery pictures), docs/diffs/ and site/ (bash scripts/exercise.sh --left-out $short).
+Hand it out only as docs/solutions.md says: a copy of lab N+1 holds lab N's solutions.
+Check it: bash scripts/exercise.sh --check-copy $out $short
 Build and grade it:
   cd $out && bash scripts/setup.sh
   ctest --test-dir build -L $short --output-on-failure     # the grader: green when every exercise is done
 Each failing test names its exercise; build/test_output/ has the pictures (actual | expected | difference).
 EOF
+

@@ -49,7 +49,9 @@ fi
 # The site's JavaScript tools, exactly as site/package-lock.json pins them. Without the npm registry
 # this fails: one line says so, the rest goes on, and the site test (site_browser) skips saying why.
 site="$root/site"
-if [ ! -f "$site/node_modules/.package-lock.json" ] || [ "$site/package-lock.json" -nt "$site/node_modules/.package-lock.json" ]; then
+if [ ! -d "$site" ]; then
+  :  # a student copy (scripts/exercise.sh) has no course site
+elif [ ! -f "$site/node_modules/.package-lock.json" ] || [ "$site/package-lock.json" -nt "$site/node_modules/.package-lock.json" ]; then
   if npm_log=$(cd "$site" && npm ci --no-audit --no-fund 2>&1); then
     echo "setup: site/node_modules installed (npm ci)"
   else
