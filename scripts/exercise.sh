@@ -224,9 +224,6 @@ known_answers=(
   # to write a formula, its line is the lab's line: the camera's columns, the light falloff.
   "tests/reference/cpu_reference.cpp look_at"
   "tests/reference/cpu_lighting.cpp attenuation"
-  # Lab 2's Phong shading (not an exercise) lights each fragment; the gouraud exercise does the
-  # same per vertex, so lit.frag is the example it follows.
-  "shaders/lab2_lighting/lit.frag gouraud"
 )
 
 # The solution lines of the exercises of lab $1 (a folder) and of every later lab, taken from this
@@ -234,7 +231,10 @@ known_answers=(
 # lines: 16 or more non-space characters. Shorter lines (braces, `return 1.0;`, `} else {`,
 # `float d = 0.0;` is 12) are everywhere in the project and say nothing about the answer, while
 # a line of 16 is already specific (`vec3 H = normalize(L + V);` is 22). A line that is also one
-# of the exercise's STUB lines is no answer: the copy has it on purpose.
+# of the exercise's STUB lines is no answer: the copy has it on purpose. Nor is boilerplate: a line
+# the project's own code also holds outside every exercise (common/, and the labs' files with their
+# exercises cut), such as `for (int i = 0; i < 3; ++i) {` or a render pass's dependency field that
+# common/ sets the same way. Trailing // comments are left out of both sides.
 solution_lines() {
   local lab="$1" l from=0 name file line hint tests
   for l in "${labs[@]}"; do
@@ -242,7 +242,7 @@ solution_lines() {
     ((from)) || continue
     exercises_of "$l" | while IFS=$'\037' read -r name file line hint tests; do
       awk -v name="$name" -v first="$line" '
-        function bare(s) { gsub(/[ \t\r]+/, "", s); return s }
+        function bare(s) { sub(/[ \t]*\/\/.*$/, "", s); gsub(/[ \t\r]+/, "", s); return s }
         FNR < first { next }
         FNR == first { next }  # the marker itself: the copy has its hint too
         /^[ \t]*\/\/ END EXERCISE[ \t]*$/ { exit }
@@ -253,7 +253,23 @@ solution_lines() {
             if (length(code[i]) >= 16 && !(code[i] in stub)) printf "%s\037%s\037%s\n", name, where[i], code[i]
         }' "$file"
     done
-  done
+  done | awk -F '\037' '
+    FNR == NR { boilerplate[$0] = 1; next }  # boilerplate_lines, below
+    !($3 in boilerplate)' <(boilerplate_lines) -
+}
+
+# Every line of the project's own code outside the exercises, without whitespace or trailing //
+# comments: common/ and the labs' folders and shader folders with every exercise cut (marker to
+# END EXERCISE, the STUB lines included).
+boilerplate_lines() {
+  { find common -type f \( -name "*.cpp" -o -name "*.h" -o -name "*.vert" -o -name "*.frag" -o -name "*.glsl" \)
+    for l in "${labs[@]}"; do find "$l" "shaders/$l" -type f ! -name "*.md" 2>/dev/null; done; } |
+    sort | xargs awk '
+      FNR == 1 { inside = 0 }
+      /\/\/ EXERCISE [a-z0-9_]+: / { inside = 1; next }
+      inside && /^[ \t]*\/\/ END EXERCISE[ \t]*$/ { inside = 0; next }
+      inside { next }
+      { s = $0; sub(/[ \t]*\/\/.*$/, "", s); gsub(/[ \t\r]+/, "", s); if (length(s) >= 16) print s }' | sort -u
 }
 
 # --check-copy DIR LAB: is DIR a copy of lab LAB (written by this script) without answers?
