@@ -13,8 +13,6 @@ struct ShadowConstants {
     glm::vec4 transmittance;  // x: 1 − opacity
 };
 constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-// How far behind the nearest translucent caster a receiver must be to be behind it, in texels.
-constexpr double kTranslucentTexels = 2.0;
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
 
@@ -36,18 +34,15 @@ std::vector<int> layout_of(const Lighting& lighting) {
 
 ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects, const Lighting& lighting,
                        const std::string& shader_dir)
-    : vk_(vk), objects_(std::move(objects)), translucent_(lighting.translucent_casters) {
+    : vk_(vk), objects_(std::move(objects)) {
     for (const Caster& c : objects_) receiver_boxes_.push_back(c.box);
     // 32-bit float depth where the device samples it (precision for perspective maps), else 16-bit.
     // Cube maps' bilinear filter needs a depth format the device filters (lavapipe: none): else nearest.
     const VkFormatFeatureFlags depth_use = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     depth_format_ = format_supports(vk, VK_FORMAT_D32_SFLOAT, depth_use) ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_D16_UNORM;
     const bool linear = format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
-    const VkFormatFeatureFlags blend_use = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    transmittance_format_ = format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
 
     depth_pass_ = make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
-    translucent_pass_ = make_offscreen_pass(vk, transmittance_format_, depth_format_);
     nearest_sampler_ = make_depth_sampler(vk, false, false);
     compare_sampler_ = make_depth_sampler(vk, linear, true);
 
@@ -65,31 +60,14 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                   .dynamic_depth_bias()
                   .depth_clamp(vk.enabled_features().depthClamp)
                   .build(vk, depth_pass_);
-    if (translucent_) {
-        const lab::Handle<VkShaderModule> translucent_shader = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
-        for (int cube = 0; cube < 2; ++cube) {
-            // Front faces as the light sees them; a cube face's view mirrors the winding. (A caster
-            // whose transform mirrors is inside out, here as in the camera's pass and the
-            // reference: docs/scene-format.md, "Negative scale".)
-            const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
-            VkPipelineColorBlendAttachmentState g{};  // the nearest face's depth into g
-            g.colorWriteMask = VK_COLOR_COMPONENT_G_BIT;
-            // r = r · (1 − α): src · 0 + dst · src (alpha: kept), into r only.
-            const VkPipelineColorBlendAttachmentState r{VK_TRUE, VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_SRC_COLOR, VK_BLEND_OP_ADD,
-                                                        VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
-                                                        VK_COLOR_COMPONENT_R_BIT};
-            lab::PipelineBuilder builder = casters;
-            builder.shaders(vertex_shader, translucent_shader).cull(back).depth_clamp(vk.enabled_features().depthClamp);
-            nearest_[cube] = builder.color_blend(g).depth(true, true).build(vk, translucent_pass_);
-            multiply_[cube] = builder.color_blend(r).depth(false, false).build(vk, translucent_pass_);
-        }
-    }
+    // The second lesson: transmittance maps beside the depth maps (translucent_shadows.cpp).
+    translucent_.emplace(vk, depth_format_, lighting.translucent_casters, casters, vertex_shader, shader_dir);
 
     const std::vector<int> slots = lighting.shadow_slots();
     for (size_t i = 0; i < lighting.lights.size(); ++i) {
         if (slots[i] < 0) continue;
         const bool cube = uses_cube_map(lighting.lights[i]);
-        maps_.push_back(make_map(int(i), cube, clamp_resolution(lighting.lights[i].shadow.resolution, cube), translucent_));
+        maps_.push_back(make_map(int(i), cube, clamp_resolution(lighting.lights[i].shadow.resolution, cube), translucent_->active()));
     }
     layout_ = layout_of(lighting);
     // Unused slots read 1×1 maps that say "lit"; cleared once, here, into the layouts they are read in.
@@ -98,7 +76,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     vk.run_once([&](VkCommandBuffer cmd) {
         for (const Map* m : {&stand_in_2d_, &stand_in_cube_}) {
             m->depth.clear(cmd);
-            m->transmittance.clear(cmd);
+            m->translucent.transmittance.clear(cmd);
         }
     });
 }
@@ -119,14 +97,8 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
     m.light = light;
     m.cube = cube;
     const VkImageUsageFlags sampled_depth = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    const VkImageUsageFlags sampled_color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     m.depth = create_layered_target(vk_, depth_pass_, resolution, cube, depth_format_, sampled_depth, VK_IMAGE_ASPECT_DEPTH_BIT);
-    if (!translucent) return m;
-    // One scratch depth serves every face (the faces are rendered one after the other).
-    m.scratch_depth = lab::create_image_2d(vk_, {resolution, resolution}, depth_format_,
-                                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-    m.transmittance = create_layered_target(vk_, translucent_pass_, resolution, cube, transmittance_format_, sampled_color,
-                                                 VK_IMAGE_ASPECT_COLOR_BIT, {m.scratch_depth.view});
+    if (translucent) m.translucent = translucent_->make_map(resolution, cube);
     return m;
 }
 
@@ -147,9 +119,9 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
         std::vector<VkDescriptorImageInfo> infos;  // [slot]
         for (int slot = 0; slot < kMaxShadowLights; ++slot) {
             const Map* m = slot < int(maps_.size()) && maps_[slot].cube == cube ? &maps_[slot] : &stand_in;
-            if (binding >= 8 && !translucent_) m = &stand_in;
+            if (binding >= 8 && !translucent_->active()) m = &stand_in;
             const VkSampler sampler = binding == 5 || binding == 7 ? compare_sampler_.get() : nearest_sampler_.get();
-            infos.push_back(binding >= 8 ? VkDescriptorImageInfo{sampler, m->transmittance.image.view, color}
+            infos.push_back(binding >= 8 ? VkDescriptorImageInfo{sampler, m->translucent.transmittance.image.view, color}
                                          : VkDescriptorImageInfo{sampler, m->depth.image.view, depth});
         }
         lab::write_image_descriptors(vk_, set, binding, infos);
@@ -258,13 +230,8 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
     // normal_offset / resolution.
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
-    // A receiver less than kTranslucentTexels texels (world units, t) behind the nearest translucent
-    // caster is that caster itself (shadows.glsl). In depth: orthographic t / (far − near);
-    // perspective, with a texel τ·z wide at distance z, (a − b/(z + t)) − (a − b/z) = b·t / (z(z + t))
-    // = K / z with K = b·k·τ / (1 + k·τ), k = kTranslucentTexels: one division per pixel.
-    const double tau = f.texel / map.depth.size;
-    map.gpu.translucent = glm::vec4(perspective ? float(b * kTranslucentTexels * tau / (1.0 + kTranslucentTexels * tau))
-                                                : float(kTranslucentTexels * tau / (f.far_plane - f.near_plane)),
+    // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp).
+    map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
 
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
@@ -276,12 +243,8 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
         draw_casters(cmd, world_to_clip, lighting, false, in_map);
         vkCmdEndRenderPass(cmd);
-        if (!translucent_) continue;
-        map.transmittance.begin(cmd, face);
-        for (const auto* pipeline : {&nearest_[map.cube], &multiply_[map.cube]}) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
-            draw_casters(cmd, world_to_clip, lighting, true, in_map);
-        }
-        vkCmdEndRenderPass(cmd);
+        if (translucent_->active())
+            translucent_->render(cmd, map.translucent, face, map.cube,
+                                 [&] { draw_casters(cmd, world_to_clip, lighting, true, in_map); });
     }
 }

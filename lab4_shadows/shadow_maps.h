@@ -9,6 +9,7 @@
 #include "depth_view.h"
 #include "offscreen.h"
 #include "pipeline_builder.h"
+#include "translucent_shadows.h"
 #include "gpu_mesh.h"
 #include "light_frustum.h"
 #include "lights.h"
@@ -16,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,8 +66,7 @@ private:
         int light = -1;  // index into Lighting::lights
         bool cube = false;
         LayeredTarget depth;          // the map (its size: the resolution), one framebuffer per face
-        lab::Image scratch_depth;          // translucent scenes: the transmittance's depth test, not kept
-        LayeredTarget transmittance;  // r = Π(1 − α), g = nearest translucent depth
+        TranslucentShadows::Map translucent;  // translucent scenes: the transmittance map beside it
         std::vector<float> key;  // what the map was rendered from (change tracking)
         GpuShadow gpu{};
     };
@@ -81,13 +82,9 @@ private:
     std::vector<Caster> objects_;
     std::vector<Box> receiver_boxes_;  // every object's
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
-    VkFormat transmittance_format_ = VK_FORMAT_R32G32_SFLOAT;
-    bool translucent_ = false;  // some caster is translucent
     lab::Handle<VkRenderPass> depth_pass_;        // depth only
-    lab::Handle<VkRenderPass> translucent_pass_;  // transmittance + scratch depth
     lab::PipelineBuilder::Result opaque_;                    // depth only, depth bias
-    std::array<lab::PipelineBuilder::Result, 2> nearest_;    // [cube]: g = nearest translucent depth
-    std::array<lab::PipelineBuilder::Result, 2> multiply_;   // [cube]: r ×= 1 − α
+    std::optional<TranslucentShadows> translucent_;  // its pass; pipelines when some caster is translucent
     lab::Handle<VkSampler> nearest_sampler_, compare_sampler_;
     std::vector<Map> maps_;          // one per shadow slot, in slot order
     Map stand_in_2d_, stand_in_cube_;  // 1×1, cleared: what unused slots' descriptors point at

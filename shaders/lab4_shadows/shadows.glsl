@@ -34,25 +34,8 @@ layout(set = 0, binding = 4) uniform sampler2D shadow_depth[4];
 layout(set = 0, binding = 5) uniform sampler2DShadow shadow_compare[4];
 layout(set = 0, binding = 6) uniform samplerCube cube_depth[4];
 layout(set = 0, binding = 7) uniform samplerCubeShadow cube_compare[4];
-// Translucent casters: r = Π(1 − opacity) of the front faces (as the light sees them) along
-// the texel's ray, g = the depth of the nearest one.
-layout(set = 0, binding = 8) uniform sampler2D translucency[4];
-layout(set = 0, binding = 9) uniform samplerCube cube_translucency[4];
-
-// A receiver less than 2 texels (in world units) behind the nearest translucent caster is that
-// caster itself. In depth that is K / z, z = P's distance along the map's axis (an orthographic
-// map: z = 1, K as it is; K from the map, shadow_maps.cpp): a fixed tolerance in depth would not
-// do, perspective depth crowds towards 1 (1e-4 of it is metres at a far light).
-
-// One tap's light: 1 or 0 from the depth compare, times the translucent casters' transmittance
-// when the point lies behind the nearest of them by more than `tolerance` (in depth, see above).
-float tap(float lit, bool translucent, vec2 transmittance, float ref, float tolerance) {
-    // EXERCISE translucent_tap: when does the light pass through the translucent casters before reaching P, and how much of it is left (what do r and g of the transmittance map hold)? Wrong: a glass object casts no shadow, or shadows itself. Checked by Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply.
-    // STUB: return lit;  // translucent casters let all the light through
-    if (translucent && ref > transmittance.g + tolerance) lit *= transmittance.r;
-    return lit;
-    // END EXERCISE
-}
+// Translucent casters (the second lesson): their transmittance maps and tap(), one tap's light.
+#include "translucent_shadows.glsl"
 
 // Directional and spot lights: P projected into the map; PCF averages N×N taps one texel apart.
 float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D translucent_map, int pcf, int filter_mode,
