@@ -103,6 +103,7 @@ int main(int argc, char** argv) {
         Camera camera = Camera::from_scene(scene.camera);
         Controls controls;
         Lighting lighting = Lighting::from_scene(scene);
+        lighting.mip_view = app.options().dev.mip_view;  // headless pictures of the mip levels
         auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, app.shader_dir());
         lab::SceneReloader reloader(app.options().scene, scene);
         const auto rebuild = [&](const lab::Scene& fresh) {

@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
         Camera camera = Camera::from_scene(scene.camera);
         Controls controls;
         Lighting lighting = Lighting::from_scene(scene);
+        lighting.mip_view = app.options().dev.mip_view;  // headless pictures of the mip levels
         lighting.animate_lights = app.options().dev.animate_lights;  // headless: what --benchmark times
         lighting.shadow_view = app.options().dev.shadow_view;        // headless pictures of a map
         auto renderer = std::make_unique<Renderer>(app.vk(), app.target(), scene, lighting, app.shader_dir());

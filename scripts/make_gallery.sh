@@ -14,6 +14,13 @@
 # command-line arguments, split at spaces and newlines (no quoting), lines starting with '#'
 # ignored; e.g. `--dev-shadow-view 0`.
 #
+# A picture of the truth a lab approximates comes from the CPU reference instead of the lab: a
+# NAME.reference next to NAME.json (instead of a NAME.args) holds tests/tools/lab_reference's
+# arguments, read the same way, and the picture is `lab_reference --lab <lab> --scene NAME.json
+# --width 480 --height 270 ARGUMENTS`; e.g. `--supersample 16` for lab 3's filtering ground truth
+# (16×16 rays per pixel, as tests/test_lab3_render.cpp takes it). The reference is deterministic, so
+# --check compares it like the others; it needs `lab_reference` built as well.
+#
 # --check renders again and compares with tests/tools/lab_compare: like the render tests, at most
 # 0.5 % of the pixels may differ by more than 2/255 (a real GPU rasterizes a few edge pixels
 # differently; lavapipe gives the same bytes). It also checks that the gallery page
@@ -52,11 +59,27 @@ for lab in "${labs[@]}"; do
   for s in "$dir"/scenes/*.json; do pictures+=("$(basename "$s" .json):$s"); done
   for p in "${pictures[@]}"; do
     name="${p%%:*}" scene="${p#*:}"
-    extra=()
-    if [ -f "$dir/scenes/$name.args" ]; then
-      read -r -d '' -a extra < <(grep -v '^[[:space:]]*#' "$dir/scenes/$name.args") || true
+    extra=() renderer=lab
+    if [ -f "$dir/scenes/$name.args" ] && [ -f "$dir/scenes/$name.reference" ]; then
+      echo "FAIL $lab/$name: $dir/scenes/ has both $name.args (for the lab) and $name.reference (for lab_reference)"
+      failures=$((failures + 1))
+      continue
     fi
-    if ! "$exe" --dev-shader-dir "$shaders" --scene "$scene" --headless --validate \
+    arguments="$dir/scenes/$name.args"
+    if [ -f "$dir/scenes/$name.reference" ]; then arguments="$dir/scenes/$name.reference" renderer=reference; fi
+    if [ -f "$arguments" ]; then
+      read -r -d '' -a extra < <(grep -v '^[[:space:]]*#' "$arguments") || true
+    fi
+    if [ $renderer = reference ]; then
+      reference="$build/tests/lab_reference"
+      [ -x "$reference" ] || { echo "gallery: $reference is not built (needed for $dir/scenes/$name.reference)" >&2; exit 2; }
+      if ! "$reference" --lab "$lab" --scene "$scene" --width $width --height $height "${extra[@]}" \
+           --out "$out/$name.png" >"$out/$name.log" 2>&1; then
+        echo "FAIL $lab/$name: lab_reference failed on $scene: $(tail -n 1 "$out/$name.log")"
+        failures=$((failures + 1))
+        continue
+      fi
+    elif ! "$exe" --dev-shader-dir "$shaders" --scene "$scene" --headless --validate \
          --width $width --height $height "${extra[@]}" --out "$out/$name.png" >"$out/$name.log" 2>&1; then
       echo "FAIL $lab/$name: the lab failed on $scene: $(tail -n 1 "$out/$name.log")"
       failures=$((failures + 1))

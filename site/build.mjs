@@ -270,7 +270,7 @@ const galleryCards = labs.map((lab) => {
 <a href="${pageOf.get(readme)}">${thumb}<br>The pictures lab ${labNumber(lab)} must render, with their captions</a></section>`;
 });
 writePage('gallery.html', { title: 'Galleries', section: 'gallery.html', body: `<h1>Galleries</h1>
-<p>Each lab's expected pictures, rendered headless by the lab itself (<code>bash scripts/make_gallery.sh</code>; the tests
+<p>Each lab's expected pictures, rendered headless by the lab itself (a ground truth beside them by the CPU reference; <code>bash scripts/make_gallery.sh</code>; the tests
 <code>gallery_labN</code> fail when a lab no longer renders them).</p>
 <div class="gallery-cards">${galleryCards.join('\n')}</div>` });
 

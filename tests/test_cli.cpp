@@ -184,12 +184,13 @@ TEST(Cli, DeveloperOptionsAreOffByDefault) {
     EXPECT_TRUE(d.scene_dir.empty());
     EXPECT_FALSE(d.animate_lights);
     EXPECT_EQ(d.shadow_view, -1);
+    EXPECT_FALSE(d.mip_view);
 }
 
 TEST(Cli, EveryDeveloperOption) {
     const lab::Options o = parse({"--dev-status-file", "s.txt", "--dev-fail-after-submit=3", "--dev-validation-probe",
                                   "--dev-no-blit", "--dev-shader-dir", "/tmp/sh", "--dev-scene-dir=/tmp/sc",
-                                  "--dev-animate-lights", "--dev-shadow-view", "2", "--width", "64"});
+                                  "--dev-animate-lights", "--dev-shadow-view", "2", "--dev-mip-view", "--width", "64"});
     EXPECT_EQ(o.dev.status_file, "s.txt");
     EXPECT_EQ(o.dev.fail_after_submit, 3);
     EXPECT_TRUE(o.dev.validation_probe);
@@ -198,6 +199,7 @@ TEST(Cli, EveryDeveloperOption) {
     EXPECT_EQ(o.dev.scene_dir, "/tmp/sc");
     EXPECT_TRUE(o.dev.animate_lights);
     EXPECT_EQ(o.dev.shadow_view, 2);
+    EXPECT_TRUE(o.dev.mip_view);
     EXPECT_EQ(o.width, 64u);  // the students' options still parse beside them
 }
 
@@ -206,6 +208,7 @@ TEST(Cli, DeveloperOptionMistakes) {
     EXPECT_CONTAINS(error_of({"--dev-fail-after-submit", "0"}), "out of range");
     EXPECT_CONTAINS(error_of({"--dev-shadow-view", "-1"}), "out of range");
     EXPECT_CONTAINS(error_of({"--dev-no-blit=1"}), "takes no value");
+    EXPECT_CONTAINS(error_of({"--dev-mip-view=1"}), "takes no value");
     EXPECT_CONTAINS(error_of({"--dev-status-file"}), "missing value");
     EXPECT_CONTAINS(error_of({"--dev-animate-light"}), "did you mean --dev-animate-lights?");
     EXPECT_CONTAINS(error_of({"--dev-whatever-else"}), "see --help-dev");

@@ -8,7 +8,7 @@ const std::vector<OptionSpec>& dev_option_specs() {
     static const std::vector<OptionSpec> specs = {
         {"dev-status-file", true}, {"dev-fail-after-submit", true}, {"dev-validation-probe", false},
         {"dev-no-blit", false},    {"dev-shader-dir", true},        {"dev-scene-dir", true},
-        {"dev-animate-lights", false}, {"dev-shadow-view", true},
+        {"dev-animate-lights", false}, {"dev-shadow-view", true},   {"dev-mip-view", false},
     };
     return specs;
 }
@@ -31,6 +31,8 @@ void set_dev_option(DevOptions& dev, const std::string& name, const std::string&
         dev.animate_lights = true;
     } else if (name == "dev-shadow-view") {
         dev.shadow_view = int(parse_whole_number(option, value, 0, 1000));
+    } else if (name == "dev-mip-view") {
+        dev.mip_view = true;
     }
 }
 
@@ -51,6 +53,8 @@ std::string dev_usage(const std::string& program) {
            "  --dev-animate-lights       lab 4: the lights circle the Y axis (every shadow map is\n"
            "                             re-rendered every frame: what --benchmark times)\n"
            "  --dev-shadow-view N        lab 4: show light N's shadow map (headless pictures)\n"
+           "  --dev-mip-view             labs 3 and 4: start with the mip-level view on (each\n"
+           "                             textured pixel tinted by the mip level it reads)\n"
            "  --help-dev                 show this help and exit\n";
 }
 

@@ -1,7 +1,7 @@
 // dev_options.h — the switchboard for tests and measurements: every `--dev-…` flag, parsed once
 // with the rest of the command line (cli.h) and listed by `--help-dev`, not by the students'
-// `--help`. A lab's picture never depends on them, except lab 4's two (what a headless run
-// cannot do with the mouse: animate the lights, show a light's map).
+// `--help`. A lab's picture never depends on them, except lab 3's mip view and lab 4's two (what a
+// headless run cannot do with the mouse: tint by mip level, animate the lights, show a light's map).
 #pragma once
 
 #include <string>
@@ -18,6 +18,7 @@ struct DevOptions {
     std::string scene_dir;          // --dev-scene-dir DIR: the default scene from DIR
     bool animate_lights = false;    // --dev-animate-lights: lab 4's lights circle the Y axis
     int shadow_view = -1;           // --dev-shadow-view N: lab 4 shows light N's shadow map (-1: none)
+    bool mip_view = false;          // --dev-mip-view: labs 3 and 4 start with the mip-level view on
 };
 
 // One option of the command line (cli.cpp lists the students' ones, this file the developer ones).
