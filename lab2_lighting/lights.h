@@ -21,7 +21,7 @@ constexpr int kMaxDirectional = 8;
 constexpr int kMaxPoint = 32;
 constexpr int kMaxSpot = 32;
 
-// --- GPU layouts (std430; every member a vec4 so C++ and GLSL agree without padding rules) ---
+// --- GPU layouts (every member a vec4, so C++ and GLSL agree without padding rules, std140 = std430) ---
 struct GpuDirectional {
     glm::vec4 direction;  // xyz: unit vector, the way the light travels
     glm::vec4 radiance;   // rgb: color × intensity
@@ -44,6 +44,10 @@ struct GpuLights {
     GpuPoint point[kMaxPoint];
     GpuSpot spot[kMaxSpot];
 };
+// The lights are a uniform buffer, not a storage buffer: every pixel reads every light, and on a
+// CPU rasterizer (lavapipe) a storage buffer is read lane by lane, a uniform one once for all
+// (README, "What it costs"). A uniform buffer may hold 16 KB on every device (maxUniformBufferRange):
+static_assert(sizeof(GpuLights) <= 16384, "the lights no longer fit a uniform buffer: use a storage buffer");
 // The materials are a uniform buffer of kMaxMaterials entries (std140 = std430 here: all vec4).
 constexpr int kMaxMaterials = 128;
 struct GpuMaterial {

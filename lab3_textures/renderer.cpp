@@ -63,19 +63,19 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const std::vector<lab::DescriptorBinding> bindings = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},   // the fragment shader needs the camera position
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, both},   // lights (Gouraud reads them in the vertex shader)
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},   // lights (Gouraud reads them in the vertex shader)
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both}};  // materials
     set_layout_ = lab::make_descriptor_set_layout(vk, bindings);
     pool_ = lab::make_descriptor_pool(vk, bindings, lab::RenderTarget::kFramesInFlight);
     const VkDeviceSize material_bytes = kMaxMaterials * sizeof(GpuMaterial);
     for (uint32_t slot = 0; slot < lab::RenderTarget::kFramesInFlight; ++slot) {
         uniforms_.push_back(lab::Buffer::host_visible(vk, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
-        lights_.push_back(lab::Buffer::host_visible(vk, sizeof(GpuLights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+        lights_.push_back(lab::Buffer::host_visible(vk, sizeof(GpuLights), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
         materials_.push_back(lab::Buffer::host_visible(vk, material_bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
         sets_.push_back(lab::allocate_descriptor_set(vk, pool_, set_layout_));
         lab::write_buffer_descriptor(vk, sets_.back(), 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.back().get(),
                                      sizeof(FrameUniforms));
-        lab::write_buffer_descriptor(vk, sets_.back(), 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.back().get(),
+        lab::write_buffer_descriptor(vk, sets_.back(), 1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, lights_.back().get(),
                                      sizeof(GpuLights));
         lab::write_buffer_descriptor(vk, sets_.back(), 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, materials_.back().get(),
                                      material_bytes);

@@ -46,7 +46,9 @@ struct DirectionalLight { vec4 direction; vec4 radiance; vec4 shadow; };
 struct PointLight { vec4 position; vec4 radiance; vec4 attenuation; vec4 shadow; };
 struct SpotLight { vec4 position; vec4 direction; vec4 radiance; vec4 attenuation; vec4 cone; vec4 shadow; };
 
-layout(std430, set = 0, binding = 1) readonly buffer Lights {
+// A uniform buffer (4-6 KB, lights.h): read at the same address by every pixel, which a CPU
+// rasterizer does once per group of pixels; a storage buffer it reads lane by lane.
+layout(std140, set = 0, binding = 1) uniform Lights {
     uvec4 counts;  // x: directional, y: point, z: spot
     DirectionalLight directional[8];
     PointLight point[32];

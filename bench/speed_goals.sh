@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# speed_goals.sh — are labs 2-4 at interactive speed on this CPU? Every figure is a ratio to lab 1's
+# default window frame measured in the same round (docs/performance.md, "Speed goals"): Sascha
+# Willems' shadowmapping example measured 5.9× and 5.8× lab 1 on two machines, so ≤ 5.5× lab 1
+# stands for "no slower than that example".
+#
+#   bash bench/speed_goals.sh [rounds] [frames]      (LP_NUM_THREADS=2 unless set; default 5 rounds of 60)
+#
+# One round runs each program once, in a 1280×720 window (--benchmark F --window: rendering, UI and
+# presenting); rounds interleave them so that load from other processes hits all alike. Without a
+# DISPLAY the script starts its own Xvfb. The programs:
+#   lab1            lab 1, default scene (the yardstick)
+#   lab2 lab3 lab4  each lab's default scene (lab 4: static lights, maps rendered once)
+#   lab4_off        lab 4's default scene with every light's shadows off
+#   swlike          lab 4 on scenes/bench/swlike_shadows.json (≈53 k triangles, one spot, 2048²,
+#                   3×3 PCF) with --dev-animate-lights: the map is re-rendered every frame
+#   ambient         lab 2 on scenes/lab2_ambient_only.json (no light: the per-light baseline)
+#   one_lab2 one_lab3 one_lab4   labs 2, 3, 4 on scenes/lab2_one_light.json (one directional light)
+#   one_fixture     lab 2 on the same scene with bench/fixtures/minimal_blinn_phong.frag as its
+#                   fragment shader: the least one lit light can cost here
+# The goals (issue 24), from the medians of the per-round ratios:
+#   1. swlike ≤ 5.5× lab1            2. lab2, lab3, lab4 ≤ 5.5× lab1
+#   3. per-light cost (one_labN − ambient) ≤ 2× the fixture's (one_fixture − ambient)
+#   4. lab4 ≤ 1.30× lab4_off, lab3 ≤ 1.30× lab2
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${LAB_BUILD_DIR:-$root/build}"
+rounds="${1:-5}"
+frames="${2:-60}"
+export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
+tmp=$(mktemp -d)
+xvfb_pid=""
+cleanup() { [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null; rm -rf "$tmp"; }
+trap cleanup EXIT
+
+for lab in lab1_camera lab2_lighting lab3_textures lab4_shadows; do
+  [ -x "$build/$lab/$lab" ] || { echo "speed_goals: $build/$lab/$lab is missing: build first" >&2; exit 2; }
+done
+command -v glslangValidator >/dev/null || { echo "speed_goals: glslangValidator is missing (scripts/setup.sh)" >&2; exit 2; }
+if [ -z "${DISPLAY:-}" ]; then
+  command -v Xvfb >/dev/null || { echo "speed_goals: no DISPLAY and no Xvfb" >&2; exit 2; }
+  for n in $(seq 90 99); do [ -e "/tmp/.X$n-lock" ] || { display=":$n"; break; }; done
+  Xvfb "$display" -screen 0 1280x720x24 >/dev/null 2>&1 &
+  xvfb_pid=$!
+  export DISPLAY="$display"
+  sleep 1
+fi
+
+# The fixture: lab 2's compiled shaders with lit.frag replaced.
+fixture="$tmp/fixture"
+cp -r "$build/shaders/lab2_lighting" "$fixture"
+glslangValidator -V --target-env vulkan1.1 -o "$fixture/lit.frag.spv" "$root/bench/fixtures/minimal_blinn_phong.frag" >/dev/null
+# Lab 4's default scene with no shadows; texture and model paths made absolute (the copy lives in $tmp).
+python3 - "$root/scenes/lab4_shadows.json" "$tmp/off.json" "$root/scenes" <<'PY'
+import json, os, sys
+scene = json.load(open(sys.argv[1]))
+for light in scene["lights"]:
+    light["cast_shadows"] = False
+for m in scene["materials"].values():
+    for k in ("albedo_map", "specular_map", "emissive_map"):
+        if k in m and not m[k].startswith("procedural:"):
+            m[k] = os.path.join(sys.argv[3], m[k])
+for o in scene["objects"]:
+    if o["mesh"].endswith(".obj"):
+        o["mesh"] = os.path.join(sys.argv[3], o["mesh"])
+json.dump(scene, open(sys.argv[2], "w"))
+PY
+
+names=(lab1 lab2 lab3 lab4 lab4_off swlike ambient one_lab2 one_lab3 one_lab4 one_fixture)
+run() {  # name → the median ms of one --benchmark run in a window
+  local exe
+  case "$1" in
+    lab1) exe=("$build/lab1_camera/lab1_camera") ;;
+    lab2) exe=("$build/lab2_lighting/lab2_lighting") ;;
+    lab3) exe=("$build/lab3_textures/lab3_textures") ;;
+    lab4) exe=("$build/lab4_shadows/lab4_shadows") ;;
+    lab4_off) exe=("$build/lab4_shadows/lab4_shadows" --scene "$tmp/off.json") ;;
+    swlike) exe=("$build/lab4_shadows/lab4_shadows" --scene "$root/scenes/bench/swlike_shadows.json" --dev-animate-lights) ;;
+    ambient) exe=("$build/lab2_lighting/lab2_lighting" --scene "$root/scenes/lab2_ambient_only.json") ;;
+    one_lab2) exe=("$build/lab2_lighting/lab2_lighting" --scene "$root/scenes/lab2_one_light.json") ;;
+    one_lab3) exe=("$build/lab3_textures/lab3_textures" --scene "$root/scenes/lab2_one_light.json") ;;
+    one_lab4) exe=("$build/lab4_shadows/lab4_shadows" --scene "$root/scenes/lab2_one_light.json") ;;
+    one_fixture) exe=("$build/lab2_lighting/lab2_lighting" --scene "$root/scenes/lab2_one_light.json" --dev-shader-dir "$fixture") ;;
+  esac
+  "${exe[@]}" --benchmark "$frames" --window 2>/dev/null | sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p'
+}
+
+cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
+echo "speed_goals: $cpu, LP_NUM_THREADS=$LP_NUM_THREADS, 1280x720 windows, $rounds rounds of --benchmark $frames --window, $(date -u +%F)"
+declare -A times
+for ((r = 1; r <= rounds; ++r)); do
+  line="round $r:"
+  for n in "${names[@]}"; do
+    t=$(run "$n")
+    [ -n "$t" ] || { echo "speed_goals: $n gave no figure" >&2; exit 1; }
+    times[$n]+=" $t"
+    line+=" $n=$t"
+  done
+  echo "$line"
+done
+
+python3 - "$rounds" "${names[@]}" <<PY
+import statistics, sys
+rounds = int(sys.argv[1]); names = sys.argv[2:]
+t = {n: [float(x) for x in s.split()] for n, s in zip(names, """$(for n in "${names[@]}"; do echo "${times[$n]}"; done)""".strip().split("\n"))}
+med = lambda xs: statistics.median(xs)
+ratio = lambda a, b: med([x / y for x, y in zip(t[a], t[b])])
+print("median ms:", "  ".join(f"{n} {med(t[n]):.1f}" for n in names))
+def goal(label, value, limit):
+    print(f"  {'PASS' if value <= limit else 'FAIL'}  {label}: {value:.2f} (goal ≤ {limit})")
+print("goals (medians of per-round ratios):")
+goal("1. swlike / lab1", ratio("swlike", "lab1"), 5.5)
+for lab in ("lab2", "lab3", "lab4"):
+    goal(f"2. {lab} / lab1", ratio(lab, "lab1"), 5.5)
+fixture = [f - a for f, a in zip(t["one_fixture"], t["ambient"])]
+for lab in ("one_lab2", "one_lab3", "one_lab4"):
+    per_light = [x - a for x, a in zip(t[lab], t["ambient"])]
+    goal(f"3. per-light cost {lab[4:]} / fixture ({med(per_light):.2f} / {med(fixture):.2f} ms)",
+         med([p / max(f, 1e-3) for p, f in zip(per_light, fixture)]), 2.0)
+goal("4. lab4 / lab4_off", ratio("lab4", "lab4_off"), 1.30)
+goal("4. lab3 / lab2", ratio("lab3", "lab2"), 1.30)
+PY
