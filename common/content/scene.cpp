@@ -441,7 +441,12 @@ SamplerDesc read_sampler(const Context& ctx, const json& value, const std::strin
     s.integer("anisotropy", d.anisotropy, 1, 16);
     if (const json* v = s.find("wrap"))
         d.wrap = SamplerDesc::Wrap(s.choice(*v, "wrap", "wrap mode", {"repeat", "clamp", "mirror"}));
+    if (const json* v = s.find("anisotropic"))
+        d.anisotropic = SamplerDesc::Anisotropic(s.choice(*v, "anisotropic", "anisotropic filter", {"sampler", "probes"}));
     s.finish();
+    // The probes are trilinear lookups at a chosen LOD: without linear mipmaps there is no LOD between levels to choose.
+    if (d.anisotropic == SamplerDesc::Anisotropic::Probes && d.mipmaps != SamplerDesc::Mipmaps::Linear)
+        fail(ctx, s.path_of("anisotropic"), "\"probes\" needs \"mipmaps\": \"linear\" (the probes read between mip levels)");
     return d;
 }
 
