@@ -39,6 +39,8 @@ settings=(
   'trilinear + probes 4|"filter": "linear", "mipmaps": "linear", "anisotropy": 4, "anisotropic": "probes"'
   'trilinear + probes 8|"filter": "linear", "mipmaps": "linear", "anisotropy": 8, "anisotropic": "probes"'
   'trilinear + probes 16|"filter": "linear", "mipmaps": "linear", "anisotropy": 16, "anisotropic": "probes"'
+  'bilinear, nearest mipmaps + probes 4|"filter": "linear", "mipmaps": "nearest", "anisotropy": 4, "anisotropic": "probes"'
+  'bilinear, nearest mipmaps + probes 8|"filter": "linear", "mipmaps": "nearest", "anisotropy": 8, "anisotropic": "probes"'
 )
 for i in "${!settings[@]}"; do
   IFS='|' read -r label sampler <<<"${settings[i]}"

@@ -44,8 +44,8 @@ bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, float
             rebuild |= lab::ui::enum_combo("mipmaps", m.sampler.mipmaps, kMipmaps, 3);
             rebuild |= ImGui::SliderInt("anisotropy", &m.sampler.anisotropy, 1, 16);
             rebuild |= lab::ui::enum_combo("anisotropic by", m.sampler.anisotropic, kAnisotropic, 2);
-            if (m.sampler.anisotropic == lab::SamplerDesc::Anisotropic::Probes && m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::Linear)
-                ImGui::TextDisabled("probes need linear mipmaps: plain lookups");
+            if (m.sampler.anisotropic == lab::SamplerDesc::Anisotropic::Probes && m.sampler.mipmaps == lab::SamplerDesc::Mipmaps::None)
+                ImGui::TextDisabled("probes need mipmaps: plain lookups");
             rebuild |= lab::ui::enum_combo("wrap", m.sampler.wrap, kWraps, 3);
             rebuild |= ImGui::Checkbox("distorted sampling (albedo)", &m.distorted);
             if (m.distorted) {

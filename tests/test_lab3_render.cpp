@@ -475,6 +475,8 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
         {"bilinear, nearest mipmaps", R"({"mipmaps": "nearest", "anisotropy": 1})"},
         {"bilinear, nearest mipmaps + aniso 4", R"({"mipmaps": "nearest", "anisotropy": 4})"},
         {"bilinear, nearest mipmaps + aniso 16", R"({"mipmaps": "nearest", "anisotropy": 16})"},
+        {"bilinear, nearest mipmaps + probes 4", R"({"mipmaps": "nearest", "anisotropy": 4, "anisotropic": "probes"})"},
+        {"bilinear, nearest mipmaps + probes 8", R"({"mipmaps": "nearest", "anisotropy": 8, "anisotropic": "probes"})"},
     };
     enum { kNearest, kLinearNoMips, kTrilinear, kAniso2, kAniso4, kAniso8, kAniso16, kProbes2, kProbes3, kProbes4, kProbes8, kProbes16 };
     const std::string uv_scale = "[5, 5]";

@@ -109,8 +109,10 @@ TEST(TextureScene, AnisotropicProbes) {
     EXPECT_EQ(m.sampler.probes(), 4);
     EXPECT_EQ(material(R"({"sampler": {"anisotropic": "probes", "anisotropy": 1}})").sampler.probes(), 0);
     EXPECT_EQ(material(R"({"sampler": {"anisotropic": "sampler", "anisotropy": 8}})").sampler.probes(), 0);
-    lab::SamplerDesc ui = m.sampler;  // the panel may set other mipmaps: the plain lookup then
-    ui.mipmaps = lab::SamplerDesc::Mipmaps::Nearest;
+    // Nearest mipmaps: each probe bilinear on its nearest level (the sampler's mipmap mode).
+    EXPECT_EQ(material(R"({"sampler": {"anisotropic": "probes", "anisotropy": 4, "mipmaps": "nearest"}})").sampler.probes(), 4);
+    lab::SamplerDesc ui = m.sampler;  // the panel may switch mipmaps off: the plain lookup then
+    ui.mipmaps = lab::SamplerDesc::Mipmaps::None;
     EXPECT_EQ(ui.probes(), 0);
 }
 
@@ -129,9 +131,8 @@ TEST(TextureScene, MistakesAreSceneErrors) {
     expect(R"({"sampler": {"anisotropy": 2.5}})", "materials.m.sampler.anisotropy", "integer");
     expect(R"({"sampler": {"mipmaps": true}})", "materials.m.sampler.mipmaps", "expected a string");
     expect(R"({"sampler": {"anisotropic": "shader"}})", "materials.m.sampler.anisotropic", "unknown anisotropic filter");
-    expect(R"({"sampler": {"anisotropic": "probes", "mipmaps": "nearest"}})", "materials.m.sampler.anisotropic",
-           "\"probes\" needs \"mipmaps\": \"linear\"");
-    expect(R"({"sampler": {"anisotropic": "probes", "mipmaps": "none"}})", "materials.m.sampler.anisotropic", "needs");
+    expect(R"({"sampler": {"anisotropic": "probes", "mipmaps": "none"}})", "materials.m.sampler.anisotropic",
+           "\"probes\" needs mipmaps");
     expect(R"({"sampling": "triple"})", "materials.m.sampling", "unknown sampling mode");
     expect(R"({"uv_scale": [1, 2, 3]})", "materials.m.uv_scale", "2 numbers");
     expect(R"({"uv_offset": [1, 2e7]})", "materials.m.uv_offset[1]", "1e6");

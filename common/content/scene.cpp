@@ -444,9 +444,9 @@ SamplerDesc read_sampler(const Context& ctx, const json& value, const std::strin
     if (const json* v = s.find("anisotropic"))
         d.anisotropic = SamplerDesc::Anisotropic(s.choice(*v, "anisotropic", "anisotropic filter", {"sampler", "probes"}));
     s.finish();
-    // The probes are trilinear lookups at a chosen LOD: without linear mipmaps there is no LOD between levels to choose.
-    if (d.anisotropic == SamplerDesc::Anisotropic::Probes && d.mipmaps != SamplerDesc::Mipmaps::Linear)
-        fail(ctx, s.path_of("anisotropic"), "\"probes\" needs \"mipmaps\": \"linear\" (the probes read between mip levels)");
+    // Each probe reads the level of its share of the footprint: without mipmaps there is only level 0.
+    if (d.anisotropic == SamplerDesc::Anisotropic::Probes && d.mipmaps == SamplerDesc::Mipmaps::None)
+        fail(ctx, s.path_of("anisotropic"), "\"probes\" needs mipmaps (\"mipmaps\": \"linear\" or \"nearest\"): each probe reads a coarser level");
     return d;
 }
 

@@ -68,17 +68,18 @@ struct SamplerDesc {
     enum class Mipmaps { None, Nearest, Linear };
     enum class Wrap { Repeat, Clamp, Mirror };
     // Who filters anisotropically: the VkSampler (maxAnisotropy) or the fragment shader, with up to
-    // `anisotropy` trilinear probes along the footprint's major axis (linear mipmaps only).
+    // `anisotropy` probes along the footprint's major axis, each read as `mipmaps` says (linear:
+    // trilinear; nearest: bilinear on the nearest level). Not without mipmaps.
     enum class Anisotropic { Sampler, Probes };
     Filter filter = Filter::Linear;
     Mipmaps mipmaps = Mipmaps::Linear;
     int anisotropy = 16;  // 1 = off; with probes: the most probes per lookup
     Wrap wrap = Wrap::Repeat;
     Anisotropic anisotropic = Anisotropic::Sampler;
-    // The shader's probe maximum (0: a plain lookup). The UI may pair probes with other mipmaps
-    // than linear (the loader may not): those fall back to the plain lookup.
+    // The shader's probe maximum (0: a plain lookup). The UI may pair probes with "mipmaps": "none"
+    // (the loader may not): that falls back to the plain lookup.
     int probes() const {
-        return anisotropic == Anisotropic::Probes && mipmaps == Mipmaps::Linear && anisotropy > 1 ? anisotropy : 0;
+        return anisotropic == Anisotropic::Probes && mipmaps != Mipmaps::None && anisotropy > 1 ? anisotropy : 0;
     }
     bool operator<(const SamplerDesc& o) const {
         return std::tie(filter, mipmaps, anisotropy, wrap, anisotropic) <

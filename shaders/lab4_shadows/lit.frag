@@ -26,7 +26,8 @@ layout(set = 1, binding = 2) uniform sampler2D emissive_map;
 // anisotropic filter. A pixel's footprint in the map is the parallelogram spanned by the UV
 // derivatives (in texels: j_x = size·∂uv/∂x, j_y = size·∂uv/∂y); at a grazing angle it is long
 // and thin. One trilinear lookup blurs over its major axis; n probes spaced along that axis each
-// cover major/n of it, so each reads a sharper level (the EXT_texture_filter_anisotropic rule):
+// cover major/n of it, so each reads a sharper level (the EXT_texture_filter_anisotropic rule;
+// a probe is trilinear, or with "mipmaps": "nearest" bilinear on the nearest level: cheaper):
 //   n = min(⌈major / max(minor, 1)⌉, PROBES),   LOD = log2(max(major / n, minor)).
 // (Magnified, major ≤ 1 texel: n = 1, no blur.) PROBES is a specialization constant: 0 compiles
 // the plain lookup and nothing else. The derivatives are taken before the loop (uniform control flow).
