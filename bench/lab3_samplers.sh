@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # lab3_samplers.sh — frame time of each sampler setting on the grazing floor (scenes/lab3_floor.json)
-# at 1280x720, and lab 3 against lab 2 on lab 2's default scene, in one run. Two figures per case:
+# at 1280x720 (the sampler's anisotropy and the shader's probes, "anisotropic": "probes"), and lab 3
+# against lab 2 on lab 2's default scene, in one run. Two figures per case:
 # the median wall-clock ms of --benchmark, and the CPU ms per frame (user + sys of a run of N + 5
 # frames minus a run of 5: start-up and pipeline compilation cancel out). On a machine shared with
 # other jobs the wall clock swings by 2x between runs; the CPU time hardly moves.
@@ -34,6 +35,12 @@ settings=(
   'trilinear + aniso 4|"filter": "linear", "mipmaps": "linear", "anisotropy": 4'
   'trilinear + aniso 8|"filter": "linear", "mipmaps": "linear", "anisotropy": 8'
   'trilinear + aniso 16|"filter": "linear", "mipmaps": "linear", "anisotropy": 16'
+  'trilinear + probes 2|"filter": "linear", "mipmaps": "linear", "anisotropy": 2, "anisotropic": "probes"'
+  'trilinear + probes 4|"filter": "linear", "mipmaps": "linear", "anisotropy": 4, "anisotropic": "probes"'
+  'trilinear + probes 8|"filter": "linear", "mipmaps": "linear", "anisotropy": 8, "anisotropic": "probes"'
+  'trilinear + probes 16|"filter": "linear", "mipmaps": "linear", "anisotropy": 16, "anisotropic": "probes"'
+  'bilinear, nearest mipmaps + probes 4|"filter": "linear", "mipmaps": "nearest", "anisotropy": 4, "anisotropic": "probes"'
+  'bilinear, nearest mipmaps + probes 8|"filter": "linear", "mipmaps": "nearest", "anisotropy": 8, "anisotropic": "probes"'
 )
 for i in "${!settings[@]}"; do
   IFS='|' read -r label sampler <<<"${settings[i]}"

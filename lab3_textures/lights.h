@@ -91,6 +91,6 @@ struct Lighting {
 namespace constant { enum : size_t { model, shading, directional_count, point_count, spot_count, distribution,
                                      nan_check, toon_bands,
                                      // lab 3, per material (variant_of leaves them 0; the renderer sets them per draw)
-                                     albedo_map, specular_map, emissive_map, distorted_sampling, mip_view, count }; }
+                                     albedo_map, specular_map, emissive_map, distorted_sampling, probes, mip_view, count }; }
 using Variant = std::array<int32_t, constant::count>;
 Variant variant_of(const Lighting& lighting);

@@ -126,7 +126,9 @@ void Renderer::load_textures(const Lighting& lighting) {
     }
     for (const lab::MaterialDesc& m : lighting.materials) {
         material_sets_.push_back(VK_NULL_HANDLE);
-        material_maps_.push_back({!m.albedo_map.empty(), !m.specular_map.empty(), !m.emissive_map.empty(), m.distorted});
+        // probes: the shader's own anisotropic filter, its maximum a constant (0 = off: no cost)
+        material_maps_.push_back({!m.albedo_map.empty(), !m.specular_map.empty(), !m.emissive_map.empty(), m.distorted,
+                                  m.has_maps() ? m.sampler.probes() : 0});
         if (!m.has_maps()) continue;
         material_sets_.back() = lab::allocate_descriptor_set(vk_, texture_pool_, texture_layout_);
         // A combined image sampler is three things: the sampler (how to read; identical settings
@@ -177,7 +179,7 @@ void Renderer::draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& ligh
     for (const DrawItem& item : items_) {
         const VkDescriptorSet maps = material_sets_[item.lit.material];
         if (objects == Objects::TexturedOnly && !maps) continue;
-        // The material's maps pick the pipeline (albedo_map … distorted_sampling; the mip view only with maps).
+        // The material's maps pick the pipeline (albedo_map … probes; the mip view only with maps).
         std::copy(material_maps_[item.lit.material].begin(), material_maps_[item.lit.material].end(),
                   variant.begin() + constant::albedo_map);
         variant[constant::mip_view] = maps ? int32_t(lighting.mip_view) : 0;

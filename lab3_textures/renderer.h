@@ -91,6 +91,6 @@ private:
     lab::Handle<VkDescriptorSetLayout> texture_layout_;
     lab::Handle<VkDescriptorPool> texture_pool_;
     std::vector<VkDescriptorSet> material_sets_;       // [material]; VK_NULL_HANDLE: no maps
-    std::vector<std::array<int32_t, 4>> material_maps_;  // [material]: albedo_map … distorted_sampling
+    std::vector<std::array<int32_t, 5>> material_maps_;  // [material]: albedo_map … distorted_sampling, probes
     std::vector<std::string> warnings_;
 };

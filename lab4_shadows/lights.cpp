@@ -144,7 +144,7 @@ Variant variant_of(const Lighting& l) {
             int32_t(l.options.distribution),
             int32_t(l.options.nan_check),
             l.options.toon_bands,
-            0, 0, 0, 0,  // the material's maps: Renderer fills them in per draw
+            0, 0, 0, 0, 0,  // the material's maps and probes: Renderer fills them in per draw
             int32_t(l.mip_view)};
     // Lab 4: per shadow slot, what its lookup needs.
     const std::vector<int> slots = l.shadow_slots();

@@ -102,7 +102,7 @@ struct Lighting {
 namespace constant { enum : size_t { model, shading, directional_count, point_count, spot_count, distribution,
                                      nan_check, toon_bands,
                                      // lab 3, per material (variant_of leaves them 0; the renderer sets them per draw)
-                                     albedo_map, specular_map, emissive_map, distorted_sampling, mip_view,
+                                     albedo_map, specular_map, emissive_map, distorted_sampling, probes, mip_view,
                                      // lab 4, per shadow slot s: shadows + 4s map kind (0 none, 1 2D, 2 cube),
                                      // + 1 PCF kernel N, + 2 filter (0 nearest, 1 bilinear), + 3 translucent casters
                                      shadows, count = shadows + 4 * kMaxShadowLights }; }

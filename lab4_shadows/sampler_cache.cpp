@@ -14,7 +14,14 @@ float SamplerCache::effective_anisotropy(int requested) const {
     return std::min(float(requested), vk_.properties().limits.maxSamplerAnisotropy);
 }
 
-VkSampler SamplerCache::get(const lab::SamplerDesc& desc) {
+VkSampler SamplerCache::get(const lab::SamplerDesc& material) {
+    // "anisotropic": "probes": the fragment shader filters anisotropically itself (lit.frag, probes()),
+    // so the VkSampler has no hardware anisotropy: the plain trilinear one, shared with "anisotropy": 1.
+    lab::SamplerDesc desc = material;
+    if (desc.anisotropic == lab::SamplerDesc::Anisotropic::Probes) {
+        desc.anisotropy = 1;
+        desc.anisotropic = lab::SamplerDesc::Anisotropic::Sampler;
+    }
     auto it = samplers_.find(desc);
     if (it != samplers_.end()) return it->second;
     const float anisotropy = effective_anisotropy(desc.anisotropy);

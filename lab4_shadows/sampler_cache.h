@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+// A material whose anisotropy is done by probes in the shader gets the sampler without it.
 // Anisotropy is clamped to the device limit (or off when the device lacks the feature) with one
 // warning line each time a request is clamped.
 class SamplerCache {

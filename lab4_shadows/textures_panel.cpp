@@ -10,6 +10,7 @@ namespace {
 const char* const kFilters[] = {"nearest", "linear"};
 const char* const kMipmaps[] = {"none", "nearest", "linear"};
 const char* const kWraps[] = {"repeat", "clamp", "mirror"};
+const char* const kAnisotropic[] = {"sampler", "probes"};
 
 // A map path or "procedural:NAME"; Enter applies it, an empty field removes the map, an unknown
 // procedural name is ignored (a scene file would be rejected).
@@ -42,6 +43,9 @@ bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, float
             rebuild |= lab::ui::enum_combo("filter", m.sampler.filter, kFilters, 2);
             rebuild |= lab::ui::enum_combo("mipmaps", m.sampler.mipmaps, kMipmaps, 3);
             rebuild |= ImGui::SliderInt("anisotropy", &m.sampler.anisotropy, 1, 16);
+            rebuild |= lab::ui::enum_combo("anisotropic by", m.sampler.anisotropic, kAnisotropic, 2);
+            if (m.sampler.anisotropic == lab::SamplerDesc::Anisotropic::Probes && m.sampler.mipmaps == lab::SamplerDesc::Mipmaps::None)
+                ImGui::TextDisabled("probes need mipmaps: plain lookups");
             rebuild |= lab::ui::enum_combo("wrap", m.sampler.wrap, kWraps, 3);
             rebuild |= ImGui::Checkbox("distorted sampling (albedo)", &m.distorted);
             if (m.distorted) {

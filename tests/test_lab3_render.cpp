@@ -306,8 +306,8 @@ TEST(Lab3Render, DistortedSamplingHugeOffset) { expect_distorted_with_offset("di
 // --- minified: a tiled floor at a grazing angle (trilinear, no anisotropy) -----------------------
 
 const std::string kFloorCamera = R"({"position": [0, 0.6, 3], "target": [0, 0, -2], "far": 100})";
-std::string floor_scene(const std::string& name, const std::string& sampler) {
-    return write_scene(name, R"({"floor": {"albedo_map": ")" + tex("tiles.png") + R"(", "uv_scale": [20, 20], "sampler": )" +
+std::string floor_scene(const std::string& name, const std::string& sampler, const std::string& uv_scale = "[20, 20]") {
+    return write_scene(name, R"({"floor": {"albedo_map": ")" + tex("tiles.png") + R"(", "uv_scale": )" + uv_scale + R"(, "sampler": )" +
                                  sampler + "}}",
                        R"([{"mesh": "plane", "material": "floor", "scale": [40, 1, 40]}])", kFloorCamera);
 }
@@ -326,6 +326,46 @@ TEST(Lab3Render, MinifiedFloorCpuMipChain) {
 }
 TEST(Lab3Render, MinifiedFloorNearestMipmaps) {
     expect_matches(floor_scene("floor_nearest_mip", R"({"anisotropy": 1, "mipmaps": "nearest"})"), "floor_nearest_mip");
+}
+
+// --- anisotropic probes in the shader ("anisotropic": "probes") ---------------------------------
+
+const std::string kProbes16 = R"("sampler": {"anisotropy": 16, "anisotropic": "probes"})";
+
+TEST(Lab3Render, ProbesWhereMagnifiedAreOneTrilinearLookup) {
+    // Every map magnified (the 8×8 checker, distorted; metal and grid at 0.1 repeats): the footprint
+    // is under a texel, so n = 1 and each lookup is the trilinear one: the reference, all three maps.
+    const Verdict v = expect_matches(plane_scene("probes_magnified", R"({"albedo_map": "procedural:checker", "sampling": "distorted",
+        "specular": [0.8, 0.8, 0.8], "specular_map": "procedural:metal", "emissive_map": "procedural:grid",
+        "emissive_strength": 0.5, "uv_scale": [0.1, 0.1], )" + kProbes16 + "}",
+                                               R"([{"type": "point", "position": [0.3, 0.8, 0.2], "intensity": 1.5}])"),
+                                     "probes_magnified");
+    EXPECT_GT(v.magnified, 10000u);
+}
+
+TEST(Lab3Render, ProbesFilterTheEmissiveMapLikeTheAlbedo) {
+    // The grazing floor lit by ambient 1 alone: an albedo map A on albedo 1 gives colour A, an emissive map E on
+    // a black albedo gives E. With the same image both must go through the same probes: the same
+    // picture; and the probes must change it (they are not the plain trilinear lookup there).
+    const auto floor = [&](const std::string& name, const std::string& material) {
+        return kLab.render(write_scene(name, R"({"floor": {"uv_scale": [20, 20], )" + material + "}}",
+                                       R"([{"mesh": "plane", "material": "floor", "scale": [40, 1, 40]}])", kFloorCamera),
+                           name);
+    };
+    const std::string map = "\"" + tex("tiles.png") + "\"";
+    const std::string albedo = floor("probes_albedo", R"("albedo": [1, 1, 1], "albedo_map": )" + map + ", " + kProbes16);
+    const std::string emissive = floor("probes_emissive", R"("albedo": [0, 0, 0], "emissive_map": )" + map + ", " + kProbes16);
+    const std::string trilinear = floor("probes_emissive_off", R"("albedo": [0, 0, 0], "emissive_map": )" + map + ", " + kAnisoOff);
+    ASSERT_FALSE(albedo.empty() || emissive.empty() || trilinear.empty());
+    const lab::Image8 a = lab::read_png(albedo), e = lab::read_png(emissive), t = lab::read_png(trilinear);
+    int largest = 0;
+    size_t changed = 0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) {
+        largest = std::max(largest, std::abs(int(a.rgba[i]) - int(e.rgba[i])));
+        changed += std::abs(int(e.rgba[i]) - int(t.rgba[i])) > 2;
+    }
+    EXPECT_LE(largest, 1) << "the emissive map is not filtered like the albedo map";
+    EXPECT_GT(changed, 1000u) << "the probes leave the emissive map as the trilinear lookup";
 }
 
 // --- models: .mtl maps ------------------------------------------------------------------------
@@ -390,14 +430,28 @@ TEST(Lab3Render, DefaultSceneAnisotropyOff) {
 //
 // The grazing floor, its texture averaged over each pixel's footprint (16×16 rays per pixel,
 // level-0 bilinear lookups). Error per pixel = the largest channel difference in 1/255 (sRGB),
-// over floor pixels away from the silhouette. Anisotropic filtering must bring the picture closer
-// to the ground truth than plain trilinear filtering (an ordering, not a threshold).
+// over floor pixels away from the silhouette. uv_scale 5 at 320×180 gives the footprints (in
+// texels) of scenes/lab3_floor.json (uv_scale 20) at the benchmark's 1280×720: 4× fewer pixels
+// across, 4× fewer repeats. The floor is split by the footprint, from the reference's analytic
+// UV derivatives: magnified where λ = log2(ρmax) ≤ 0, ρmax = max(|∂uv/∂x|, |∂uv/∂y|)·size (the
+// footprint no longer than one texel either way: the near floor), minified elsewhere.
+// The orderings asserted below come from the truth, not from the renderer.
 
 struct SamplerRow {
     const char* name;
     const char* sampler;
-    double mean = 0.0, p99 = 0.0;
+    double mean = 0.0, p99 = 0.0, minified = 0.0, magnified = 0.0, magnified_p99 = 0.0;
 };
+
+double mean_of(const std::vector<int>& e) {
+    double sum = 0.0;
+    for (int v : e) sum += v;
+    return e.empty() ? 0.0 : sum / double(e.size());
+}
+double p99_of(std::vector<int> e) {
+    std::sort(e.begin(), e.end());
+    return e.empty() ? 0.0 : e[e.size() * 99 / 100];
+}
 
 TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
     SamplerRow rows[] = {
@@ -408,41 +462,81 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
         {"trilinear + aniso 4", R"({"anisotropy": 4})"},
         {"trilinear + aniso 8", R"({"anisotropy": 8})"},
         {"trilinear + aniso 16", R"({"anisotropy": 16})"},
+        {"trilinear + probes 2", R"({"anisotropy": 2, "anisotropic": "probes"})"},
+        {"trilinear + probes 3", R"({"anisotropy": 3, "anisotropic": "probes"})"},
+        {"trilinear + probes 4", R"({"anisotropy": 4, "anisotropic": "probes"})"},
+        {"trilinear + probes 8", R"({"anisotropy": 8, "anisotropic": "probes"})"},
+        {"trilinear + probes 16", R"({"anisotropy": 16, "anisotropic": "probes"})"},
+        {"linear, no mipmaps + aniso 16", R"({"mipmaps": "none", "anisotropy": 16})"},
+        {"nearest, nearest mipmaps", R"({"filter": "nearest", "mipmaps": "nearest", "anisotropy": 1})"},
+        {"nearest, linear mipmaps", R"({"filter": "nearest", "anisotropy": 1})"},
+        {"nearest, linear mipmaps + aniso 16", R"({"filter": "nearest", "anisotropy": 16})"},
+        {"nearest, linear mipmaps + probes 4", R"({"filter": "nearest", "anisotropy": 4, "anisotropic": "probes"})"},
+        {"bilinear, nearest mipmaps", R"({"mipmaps": "nearest", "anisotropy": 1})"},
+        {"bilinear, nearest mipmaps + aniso 4", R"({"mipmaps": "nearest", "anisotropy": 4})"},
+        {"bilinear, nearest mipmaps + aniso 16", R"({"mipmaps": "nearest", "anisotropy": 16})"},
+        {"bilinear, nearest mipmaps + probes 4", R"({"mipmaps": "nearest", "anisotropy": 4, "anisotropic": "probes"})"},
+        {"bilinear, nearest mipmaps + probes 8", R"({"mipmaps": "nearest", "anisotropy": 8, "anisotropic": "probes"})"},
     };
-    const lab::Scene scene = lab::load_scene(floor_scene("truth", rows[0].sampler));
+    enum { kNearest, kLinearNoMips, kTrilinear, kAniso2, kAniso4, kAniso8, kAniso16, kProbes2, kProbes3, kProbes4, kProbes8, kProbes16 };
+    const std::string uv_scale = "[5, 5]";
+    const lab::Scene scene = lab::load_scene(floor_scene("truth", rows[0].sampler, uv_scale));
     const ref::RefImage truth = ref::render_supersampled(scene, kWidth, kHeight, 16);
     const lab::Image8 expected = ref::encode_srgb(truth);
     ref::CompareOptions options;
     options.grazing_cos = 0.0;
     const std::vector<uint8_t> mask = ref::edge_mask(truth, options);
-    std::string table = "| sampler | mean error /255 | 99th percentile /255 |\n|---|---|---|\n";
+    // λ per pixel from the reference's hit at the pixel centre (the supersampled image keeps no hits).
+    const ref::RefImage centre = ref::render_reference(scene, kWidth, kHeight, ref::make_texture_shader(scene, kWidth, kHeight));
+    const auto lod = ref::make_lod_probe(scene, kWidth, kHeight);
+    std::string table = "| sampler | mean error /255 | 99th percentile /255 | minified mean /255 | magnified mean /255 | magnified 99th percentile /255 |\n"
+                        "|---|---|---|---|---|---|\n";
+    size_t magnified_pixels = 0, minified_pixels = 0;
     for (SamplerRow& row : rows) {
         const std::string name = std::string("truth_") + std::to_string(&row - rows);
-        const std::string png = kLab.render(floor_scene(name, row.sampler), name);
+        const std::string png = kLab.render(floor_scene(name, row.sampler, uv_scale), name);
         ASSERT_FALSE(png.empty());
         const lab::Image8 actual = lab::read_png(png);
-        std::vector<int> errors;
+        std::vector<int> all, minified, magnified;
         for (size_t p = 0; p < mask.size(); ++p) {
-            if (mask[p] || truth.object_id[p] < 0) continue;
+            if (mask[p] || truth.object_id[p] < 0 || !centre.hits[p].hit) continue;
             int e = 0;
             for (int c = 0; c < 3; ++c) e = std::max(e, std::abs(int(actual.rgba[4 * p + c]) - int(expected.rgba[4 * p + c])));
-            errors.push_back(e);
+            all.push_back(e);
+            (lod(centre.hits[p]) <= 0.0 ? magnified : minified).push_back(e);
         }
-        ASSERT_GT(errors.size(), 10000u);
-        double sum = 0.0;
-        for (int e : errors) sum += e;
-        row.mean = sum / double(errors.size());
-        std::sort(errors.begin(), errors.end());
-        row.p99 = errors[errors.size() * 99 / 100];
-        char line[160];
-        std::snprintf(line, sizeof line, "| %s | %.2f | %.0f |\n", row.name, row.mean, row.p99);
+        ASSERT_GT(all.size(), 10000u);
+        magnified_pixels = magnified.size();
+        minified_pixels = minified.size();
+        row.mean = mean_of(all);
+        row.p99 = p99_of(all);
+        row.minified = mean_of(minified);
+        row.magnified = mean_of(magnified);
+        row.magnified_p99 = p99_of(magnified);
+        char line[240];
+        std::snprintf(line, sizeof line, "| %s | %.2f | %.0f | %.2f | %.2f | %.0f |\n", row.name, row.mean, row.p99,
+                      row.minified, row.magnified, row.magnified_p99);
         table += line;
     }
+    table += "\n" + std::to_string(minified_pixels) + " minified and " + std::to_string(magnified_pixels) +
+             " magnified floor pixels (λ ≤ 0) at 320×180, uv_scale " + uv_scale + ".\n";
     std::printf("[ lesson  ] error against the 16x16 supersampled ground truth, floor pixels:\n%s", table.c_str());
     kLab.write("sampler_errors.md", table);
-    EXPECT_LT(rows[6].mean, rows[2].mean) << "anisotropy 16 should be closer to the ground truth than trilinear";
-    EXPECT_LT(rows[4].mean, rows[2].mean) << "anisotropy 4 should be closer to the ground truth than trilinear";
-    EXPECT_LT(rows[2].mean, rows[0].mean) << "trilinear should be closer to the ground truth than nearest without mipmaps";
+    ASSERT_GT(magnified_pixels, 2000u) << "the floor should have a magnified near part";
+    ASSERT_GT(minified_pixels, 10000u);
+    EXPECT_LT(rows[kAniso16].mean, rows[kTrilinear].mean) << "anisotropy 16 should be closer to the ground truth than trilinear";
+    EXPECT_LT(rows[kAniso4].mean, rows[kTrilinear].mean) << "anisotropy 4 should be closer to the ground truth than trilinear";
+    EXPECT_LT(rows[kTrilinear].mean, rows[kNearest].mean) << "trilinear should be closer to the ground truth than nearest without mipmaps";
+    // The probes: closer than trilinear where the footprint is long (minified), within 0.25/255 of
+    // the sampler's anisotropy 16 there, and never blurrier than trilinear where the map is magnified
+    // (one probe there: n = 1 when the footprint is under a texel).
+    constexpr double kMargin = 0.25;
+    for (int r : {kProbes2, kProbes3, kProbes4, kProbes8, kProbes16})
+        EXPECT_LT(rows[r].minified, rows[kTrilinear].minified) << rows[r].name << " should beat trilinear on the far floor";
+    for (int r : {kProbes4, kProbes8, kProbes16})
+        EXPECT_LE(rows[r].minified, rows[kAniso16].minified + kMargin) << rows[r].name << " vs the sampler's anisotropy 16, far floor";
+    for (int r : {kProbes2, kProbes3, kProbes4, kProbes8, kProbes16})
+        EXPECT_LE(rows[r].magnified, rows[kTrilinear].magnified + 0.01) << rows[r].name << " should not blur the near floor";
 }
 
 // --- stress -------------------------------------------------------------------------------------
@@ -508,6 +602,27 @@ TEST(Lab3Stress, DegenerateTriangleAndEdgeOnAnisotropy) {
     const std::string tilted = write_scene("degenerate_ref", R"({"m": {"albedo_map": ")" + tex("tiles.png") + R"(", "sampler": {"anisotropy": 1}}})",
                                            R"([{"mesh": ")" + kOutDir + R"(/degenerate.obj", "material": "m"}])");
     expect_matches(tilted, "degenerate_ref");
+}
+
+TEST(Lab3Stress, ProbesHugeScaleAndEdgeOn) {
+    // uv · 1e6 with probes: a footprint of millions of texels, 16 probes, the LOD past the chain's
+    // top: the 1×1 level, as trilinear reads it (the reference). No NaN from the huge offsets.
+    expect_matches(plane_scene("probes_huge_scale", R"({"albedo_map": ")" + tex("tiles.png") + R"(", "uv_scale": [1e6, -1e6], )" +
+                                                        kProbes16 + "}"),
+                   "probes_huge_scale");
+    // A plane seen exactly edge-on and a zero-area triangle, both with probes: nothing drawn from
+    // them, no NaN, no validation message (the renderer runs with --validate).
+    kLab.write("degenerate_probes.obj", "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nv 0 0 0\nv 0.5 0 0\nv 1 0 0\n"
+                                        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.3 0.9\nvn 0 1 0\n"
+                                        "f 1/1/1 2/2/1 3/3/1 4/4/1\nf 5/1/1 6/3/1 7/5/1\n");
+    const std::string file =
+        write_scene("degenerate_probes", R"({"m": {"albedo_map": ")" + tex("tiles.png") + R"(", )" + kProbes16 + R"(}})",
+                    R"([{"mesh": ")" + kOutDir + R"(/degenerate_probes.obj", "material": "m"},
+                        {"mesh": "plane", "material": "m", "position": [0, 0.5, 0], "scale": [3, 1, 3]}])",
+                    R"({"position": [0, 0.5, 2.5], "target": [0, 0.5, 0]})");
+    const std::string png = kLab.render(file, "degenerate_probes");
+    ASSERT_FALSE(png.empty());
+    EXPECT_EQ(ref::magenta_pixels(lab::read_png(png)), 0u);
 }
 
 // --- bad input ----------------------------------------------------------------------------------

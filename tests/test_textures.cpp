@@ -65,6 +65,8 @@ TEST(TextureScene, DefaultsAreTheSeeds) {
     EXPECT_EQ(m.sampler.mipmaps, lab::SamplerDesc::Mipmaps::Linear);
     EXPECT_EQ(m.sampler.anisotropy, 16);
     EXPECT_EQ(m.sampler.wrap, lab::SamplerDesc::Wrap::Repeat);
+    EXPECT_EQ(m.sampler.anisotropic, lab::SamplerDesc::Anisotropic::Sampler);
+    EXPECT_EQ(m.sampler.probes(), 0);  // the sampler filters anisotropically, the shader does not
     EXPECT_FALSE(m.distorted);
     EXPECT_EQ(m.distortion.amplitude, glm::vec2(0.02f, 0.015f));
     EXPECT_EQ(m.distortion.frequency, glm::vec2(10.0f, 8.0f));
@@ -100,6 +102,20 @@ TEST(TextureScene, EveryKeyIsRead) {
     EXPECT_EQ(m.distortion.weights, glm::vec2(0.5f, 0.25f));
 }
 
+TEST(TextureScene, AnisotropicProbes) {
+    // "anisotropic": "probes": the shader filters, with at most `anisotropy` probes (1 = a plain lookup).
+    const lab::MaterialDesc m = material(R"({"sampler": {"anisotropic": "probes", "anisotropy": 4}})");
+    EXPECT_EQ(m.sampler.anisotropic, lab::SamplerDesc::Anisotropic::Probes);
+    EXPECT_EQ(m.sampler.probes(), 4);
+    EXPECT_EQ(material(R"({"sampler": {"anisotropic": "probes", "anisotropy": 1}})").sampler.probes(), 0);
+    EXPECT_EQ(material(R"({"sampler": {"anisotropic": "sampler", "anisotropy": 8}})").sampler.probes(), 0);
+    // Nearest mipmaps: each probe bilinear on its nearest level (the sampler's mipmap mode).
+    EXPECT_EQ(material(R"({"sampler": {"anisotropic": "probes", "anisotropy": 4, "mipmaps": "nearest"}})").sampler.probes(), 4);
+    lab::SamplerDesc ui = m.sampler;  // the panel may switch mipmaps off: the plain lookup then
+    ui.mipmaps = lab::SamplerDesc::Mipmaps::None;
+    EXPECT_EQ(ui.probes(), 0);
+}
+
 TEST(TextureScene, MistakesAreSceneErrors) {
     const auto expect = [](const std::string& body, const std::string& path, const std::string& reason) {
         const std::string e = error_of(body);
@@ -114,6 +130,9 @@ TEST(TextureScene, MistakesAreSceneErrors) {
     expect(R"({"sampler": {"anisotropy": 17}})", "materials.m.sampler.anisotropy", "[1, 16]");
     expect(R"({"sampler": {"anisotropy": 2.5}})", "materials.m.sampler.anisotropy", "integer");
     expect(R"({"sampler": {"mipmaps": true}})", "materials.m.sampler.mipmaps", "expected a string");
+    expect(R"({"sampler": {"anisotropic": "shader"}})", "materials.m.sampler.anisotropic", "unknown anisotropic filter");
+    expect(R"({"sampler": {"anisotropic": "probes", "mipmaps": "none"}})", "materials.m.sampler.anisotropic",
+           "\"probes\" needs mipmaps");
     expect(R"({"sampling": "triple"})", "materials.m.sampling", "unknown sampling mode");
     expect(R"({"uv_scale": [1, 2, 3]})", "materials.m.uv_scale", "2 numbers");
     expect(R"({"uv_offset": [1, 2e7]})", "materials.m.uv_offset[1]", "1e6");
@@ -485,6 +504,18 @@ TEST(SamplerCache, IdenticalSettingsShareOneSampler) {
         EXPECT_EQ(cache.effective_anisotropy(16), std::min(16.0f, limit));
         EXPECT_EQ(cache.effective_anisotropy(1), 1.0f);
         EXPECT_EQ(cache.warnings().size(), limit < 16.0f ? 1u : 0u);
+        // Probes: the shader filters anisotropically, the VkSampler is the one without anisotropy
+        // (no clamp warning however many probes), shared whatever the probe maximum.
+        lab::SamplerDesc off, probes4, probes16;
+        off.anisotropy = 1;
+        probes4.anisotropy = 4;
+        probes16.anisotropy = 16;
+        probes4.anisotropic = probes16.anisotropic = lab::SamplerDesc::Anisotropic::Probes;
+        const size_t warnings = cache.warnings().size();
+        EXPECT_EQ(cache.get(probes4), cache.get(off));
+        EXPECT_EQ(cache.get(probes16), cache.get(off));
+        EXPECT_EQ(cache.size(), 3u);
+        EXPECT_EQ(cache.warnings().size(), warnings);
     }
     EXPECT_EQ(messages, 0);
 }

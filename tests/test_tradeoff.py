@@ -249,7 +249,7 @@ class Configurations(unittest.TestCase):
                           ("trilinear + aniso 16", 16, True, "seed 002")])
         self.assertEqual(cs[0]["scene"]["materials"]["floor"]["sampler"],
                          {"filter": "nearest", "mipmaps": "none", "anisotropy": 1, "wrap": "repeat"})
-        self.assertEqual(len(knobs.lab3_configs(False)), 7)
+        self.assertEqual(len(knobs.lab3_configs(False)), 11)
 
     def test_lab4(self):
         quick, full = knobs.lab4_configs(True), knobs.lab4_configs(False)

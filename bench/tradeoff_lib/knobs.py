@@ -128,6 +128,12 @@ LAB3_SAMPLERS = [
     ("trilinear + aniso 4", {"filter": "linear", "mipmaps": "linear", "anisotropy": 4}),
     ("trilinear + aniso 8", {"filter": "linear", "mipmaps": "linear", "anisotropy": 8}),
     ("trilinear + aniso 16", {"filter": "linear", "mipmaps": "linear", "anisotropy": 16}),
+    # anisotropic filtering in the fragment shader, at most N probes (lab 3's README)
+    ("trilinear + probes 2", {"filter": "linear", "mipmaps": "linear", "anisotropy": 2, "anisotropic": "probes"}),
+    ("trilinear + probes 4", {"filter": "linear", "mipmaps": "linear", "anisotropy": 4, "anisotropic": "probes"}),
+    ("trilinear + probes 8", {"filter": "linear", "mipmaps": "linear", "anisotropy": 8, "anisotropic": "probes"}),
+    ("bilinear, nearest mips + probes 4",  # lab 3's default scene's floor
+     {"filter": "linear", "mipmaps": "nearest", "anisotropy": 4, "anisotropic": "probes"}),
 ]
 LAB3_QUICK = ["nearest", "trilinear", "trilinear + aniso 16"]
 

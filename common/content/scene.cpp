@@ -441,7 +441,12 @@ SamplerDesc read_sampler(const Context& ctx, const json& value, const std::strin
     s.integer("anisotropy", d.anisotropy, 1, 16);
     if (const json* v = s.find("wrap"))
         d.wrap = SamplerDesc::Wrap(s.choice(*v, "wrap", "wrap mode", {"repeat", "clamp", "mirror"}));
+    if (const json* v = s.find("anisotropic"))
+        d.anisotropic = SamplerDesc::Anisotropic(s.choice(*v, "anisotropic", "anisotropic filter", {"sampler", "probes"}));
     s.finish();
+    // Each probe reads the level of its share of the footprint: without mipmaps there is only level 0.
+    if (d.anisotropic == SamplerDesc::Anisotropic::Probes && d.mipmaps == SamplerDesc::Mipmaps::None)
+        fail(ctx, s.path_of("anisotropic"), "\"probes\" needs mipmaps (\"mipmaps\": \"linear\" or \"nearest\"): each probe reads a coarser level");
     return d;
 }
 

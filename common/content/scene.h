@@ -62,17 +62,28 @@ struct LightDesc {
 };
 
 // Lab 3: how a texture is read (docs/scene-format.md, "sampler"). The default is the seed's:
-// bilinear, linear between mip levels, anisotropy 16, repeat.
+// bilinear, linear between mip levels, anisotropy 16 by the sampler, repeat.
 struct SamplerDesc {
     enum class Filter { Nearest, Linear };
     enum class Mipmaps { None, Nearest, Linear };
     enum class Wrap { Repeat, Clamp, Mirror };
+    // Who filters anisotropically: the VkSampler (maxAnisotropy) or the fragment shader, with up to
+    // `anisotropy` probes along the footprint's major axis, each read as `mipmaps` says (linear:
+    // trilinear; nearest: bilinear on the nearest level). Not without mipmaps.
+    enum class Anisotropic { Sampler, Probes };
     Filter filter = Filter::Linear;
     Mipmaps mipmaps = Mipmaps::Linear;
-    int anisotropy = 16;  // 1 = off
+    int anisotropy = 16;  // 1 = off; with probes: the most probes per lookup
     Wrap wrap = Wrap::Repeat;
+    Anisotropic anisotropic = Anisotropic::Sampler;
+    // The shader's probe maximum (0: a plain lookup). The UI may pair probes with "mipmaps": "none"
+    // (the loader may not): that falls back to the plain lookup.
+    int probes() const {
+        return anisotropic == Anisotropic::Probes && mipmaps != Mipmaps::None && anisotropy > 1 ? anisotropy : 0;
+    }
     bool operator<(const SamplerDesc& o) const {
-        return std::tie(filter, mipmaps, anisotropy, wrap) < std::tie(o.filter, o.mipmaps, o.anisotropy, o.wrap);
+        return std::tie(filter, mipmaps, anisotropy, wrap, anisotropic) <
+               std::tie(o.filter, o.mipmaps, o.anisotropy, o.wrap, o.anisotropic);
     }
     bool operator==(const SamplerDesc& o) const { return !(*this < o) && !(o < *this); }
 };

@@ -15,23 +15,46 @@ layout(location = 0) out vec4 out_color;
 
 // Lab 3: the material's maps (set 1), in the module built with TEXTURED (textured.frag.spv) for
 // materials that have maps; lit.frag.spv declares no samplers. The sampler decodes sRGB to
-// linear and filters (mipmaps, anisotropy) as the material's sampler says.
+// linear and filters (mipmaps, anisotropy) as the material's sampler says, or lookup()'s probes do.
 #ifdef TEXTURED
 layout(set = 1, binding = 0) uniform sampler2D albedo_map;
 layout(set = 1, binding = 1) uniform sampler2D specular_map;
 layout(set = 1, binding = 2) uniform sampler2D emissive_map;
 
+// One lookup of a map: the sampler's own filter, or with "anisotropic": "probes" the shader's
+// anisotropic filter. A pixel's footprint in the map is the parallelogram spanned by the UV
+// derivatives (in texels: j_x = size·∂uv/∂x, j_y = size·∂uv/∂y); at a grazing angle it is long
+// and thin. One trilinear lookup blurs over its major axis; n probes spaced along that axis each
+// cover major/n of it, so each reads a sharper level (the EXT_texture_filter_anisotropic rule;
+// a probe is trilinear, or with "mipmaps": "nearest" bilinear on the nearest level: cheaper):
+//   n = min(⌈major / max(minor, 1)⌉, PROBES),   LOD = log2(max(major / n, minor)).
+// (Magnified, major ≤ 1 texel: n = 1, no blur.) PROBES is a specialization constant: 0 compiles
+// the plain lookup and nothing else. The derivatives are taken before the loop (uniform control flow).
+vec4 lookup(sampler2D map, vec2 uv) {
+    if (PROBES == 0) return texture(map, uv);
+    const vec2 size = vec2(textureSize(map, 0));
+    const vec2 dx = dFdx(uv), dy = dFdy(uv);
+    const float lx = length(dx * size), ly = length(dy * size);
+    const float major = max(lx, ly), minor = min(lx, ly);
+    const vec2 axis = lx >= ly ? dx : dy;  // the major axis, in UV
+    const int n = int(clamp(ceil(major / max(minor, 1.0)), 1.0, float(PROBES)));
+    const float lod = log2(max(max(major / float(n), minor), 1e-6));
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < n; ++i) sum += textureLod(map, uv + axis * ((float(i) + 0.5) / float(n) - 0.5), lod);
+    return sum / float(n);
+}
+
 // The seed's distorted-UV multi-sampling: a small wobble of the UVs that also depends on the
 // world position P, blended with the map at two other scales. Repeats of a tiled map no longer
 // line up, so the tiling is much harder to see.
 vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
-    if (!DISTORTED) return texture(albedo_map, uv).rgb;
-    // EXERCISE distorted_uv: the seed's distorted albedo: which lookups at uv and P, wobbled or scaled, blended how (GpuMaterial::distortion)? Read this lab's README "The equation". Wrong: plain tiling, or a jump as uv_offset moves a whole repeat. Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers, Lab3Render.DistortedSamplingWholeOffsetRepeat, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.DistortedSamplingHugeOffset.
-    // STUB: return texture(albedo_map, uv).rgb;  // no distortion: the tiling shows as plainly as without it
+    if (!DISTORTED) return lookup(albedo_map, uv).rgb;
+    // EXERCISE distorted_uv: the seed's distorted albedo: which lookups (lookup(): the sampler or the probes) at uv and P, wobbled or scaled, blended how (GpuMaterial::distortion)? Read this lab's README "The equation". Wrong: plain tiling, or a jump as uv_offset moves a whole repeat. Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers, Lab3Render.DistortedSamplingWholeOffsetRepeat, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.DistortedSamplingHugeOffset.
+    // STUB: return lookup(albedo_map, uv).rgb;  // no distortion: the tiling shows as plainly as without it
     const vec4 k0 = m.distortion[0], k1 = m.distortion[1], k2 = m.distortion[2], k3 = m.distortion[3], k4 = m.distortion[4];
     const vec2 d = uv + vec2(k0.x * sin(k0.z * uv.y + k1.x * P.y + k3.x), k0.y * cos(k0.w * uv.x + k1.y * P.x + k3.y));
-    const vec3 t0 = texture(albedo_map, d).rgb, t1 = texture(albedo_map, k1.z * uv + k4.xy).rgb;
-    return mix(mix(t0, t1, k2.x), texture(albedo_map, k1.w * uv + k4.zw).rgb, k2.y);
+    const vec3 t0 = lookup(albedo_map, d).rgb, t1 = lookup(albedo_map, k1.z * uv + k4.xy).rgb;
+    return mix(mix(t0, t1, k2.x), lookup(albedo_map, k1.w * uv + k4.zw).rgb, k2.y);
     // END EXERCISE
 }
 
@@ -42,11 +65,11 @@ Material textured(Material m, vec2 uv, vec3 P) {
     // STUB: // the UVs as they are: no tiling, no shift
     uv = uv * m.uv_transform.xy + m.uv_transform.zw;
     // END EXERCISE
-    // EXERCISE texture_terms: the material with its maps: does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…)? Read docs/lighting.md "Lab 3: textured terms". Wrong: plain colours, a washed-out map, a grid that does not glow. Checked by Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
+    // EXERCISE texture_terms: the material with its maps: does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…), each read by lookup()? Read docs/lighting.md "Lab 3: textured terms". Wrong: plain colours, a washed-out map, a grid that does not glow. Checked by Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
     // STUB: // the maps are not read: every textured material shows its plain colours
     if (ALBEDO_MAP) m.albedo.rgb *= albedo_texel(m, uv, P);
-    if (SPECULAR_MAP) m.specular.rgb *= texture(specular_map, uv).rgb;
-    if (EMISSIVE_MAP) m.emissive.rgb += m.distortion[2].z * texture(emissive_map, uv).rgb;
+    if (SPECULAR_MAP) m.specular.rgb *= lookup(specular_map, uv).rgb;
+    if (EMISSIVE_MAP) m.emissive.rgb += m.distortion[2].z * lookup(emissive_map, uv).rgb;
     // END EXERCISE
     return m;
 }

@@ -19,7 +19,8 @@ layout(constant_id = 8) const bool ALBEDO_MAP = false;
 layout(constant_id = 9) const bool SPECULAR_MAP = false;
 layout(constant_id = 10) const bool EMISSIVE_MAP = false;
 layout(constant_id = 11) const bool DISTORTED = false;
-layout(constant_id = 12) const bool MIP_VIEW = false;
+layout(constant_id = 12) const int PROBES = 0;  // anisotropic probes: the most per lookup, 0 = a plain lookup
+layout(constant_id = 13) const bool MIP_VIEW = false;
 
 const int MODEL_LAMBERT = 0, MODEL_PHONG = 1, MODEL_BLINN_PHONG = 2, MODEL_TOON = 3, MODEL_OREN_NAYAR = 4,
           MODEL_MINNAERT = 5, MODEL_COOK_TORRANCE = 6, MODEL_WARD = 7;

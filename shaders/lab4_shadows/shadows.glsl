@@ -14,7 +14,7 @@
     layout(constant_id = id + 1) const int SHADOW_PCF_##i = 1;    \
     layout(constant_id = id + 2) const int SHADOW_FILTER_##i = 0; \
     layout(constant_id = id + 3) const bool SHADOW_TRANSLUCENT_##i = false;
-SHADOW_CONSTANTS(0, 13) SHADOW_CONSTANTS(1, 17) SHADOW_CONSTANTS(2, 21) SHADOW_CONSTANTS(3, 25)
+SHADOW_CONSTANTS(0, 14) SHADOW_CONSTANTS(1, 18) SHADOW_CONSTANTS(2, 22) SHADOW_CONSTANTS(3, 26)
 const bool SHADOWS = SHADOW_KIND_0 != 0 || SHADOW_KIND_1 != 0 || SHADOW_KIND_2 != 0 || SHADOW_KIND_3 != 0;
 
 struct ShadowSlot {
