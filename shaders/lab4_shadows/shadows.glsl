@@ -81,10 +81,13 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
             sum += c.w * w0.x * w0.y + c.z * w1.x * w0.y + c.x * w0.x * w1.y + c.y * w1.x * w1.y;
         }
     }
-    // Translucent casters: their transmittance where P projects (once, not per tap; not in full shadow).
+    // Translucent casters: their transmittance where P projects (once, not per tap). The fetch
+    // depends on the slot's constant only, not on `opaque`: Mesa 22.3's lavapipe crashes on a
+    // texture fetch under a per-pixel condition after these gathers (random scenes, bilinear PCF
+    // with translucent casters).
     const float opaque = sum / float(pcf * pcf);
-    return tap(opaque, translucent && opaque > 0.0, translucent && opaque > 0.0 ? texture(translucent_map, uv).rg : vec2(1.0), ref,
-               tolerance);
+    const vec2 transmittance = translucent ? texture(translucent_map, uv).rg : vec2(1.0);
+    return tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
 }
 
 // The cube map's depth of P for the face that direction d falls in: that face's axis is d's
