@@ -46,12 +46,16 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     const float distance = perspective ? length(P - s.origin.xyz) : 1.0;
     const vec3 at = P - s.origin.xyz + N * s.params.x * distance;  // relative to the origin
     const vec4 clip = s.view_projection * vec4(at, 1.0);
-    if (!(clip.w > 0.0)) return 1.0;  // behind a spot light: outside its cone anyway
+    const bool behind = !(clip.w > 0.0);  // behind a spot light: outside its cone anyway
     const float inv_w = 1.0 / clip.w;  // w: P's distance along a spot's axis; 1 for a directional map
     const vec3 ndc = clip.xyz * inv_w;
     const vec2 uv = ndc.xy * 0.5 + 0.5;
-    // Outside the map's coverage nothing was fitted to cast onto it: lit.
-    if (!(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))))) return 1.0;
+    // Outside the map's coverage nothing was fitted to cast onto it: lit. No early return: Mesa
+    // 22.3's lavapipe crashes (SIGSEGV) on some fetches that follow a per-pixel return (a spot's
+    // map in slot 1 after a cube in slot 0); every pixel fetches, at the map's centre when it is
+    // outside, and the answer is picked at the end.
+    const bool outside = behind || !(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))));
+    const vec2 lookup = outside ? vec2(0.5) : uv;
     // P's depth as the light sees it. The map ends just beyond the farthest caster: a receiver
     // farther away compares as 1, lit where the texel holds no caster (cleared to 1), in shadow
     // where it does. In front of the near plane (0): only casters clamped there can be nearer.
@@ -64,11 +68,13 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // Both read the comparison sampler four texels at a time (textureGather): N taps touch N
     // (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF costs 4 gathers, not 9 lookups.
     // A texel's weight per axis: nearest 1 (the padding texel N: 0); bilinear 1 − f, 1, …, 1, f.
-    if (pcf == 1 && filter_mode == 0)  // a single tap, a single texel: one plain lookup
-        return tap(ref <= texture(depth_map, uv).r ? 1.0 : 0.0, translucent, translucent ? texture(translucent_map, uv).rg : vec2(1.0), ref,
-                   tolerance);
+    if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
+        const float stored = texture(depth_map, lookup).r;
+        const vec2 transmittance = translucent ? texture(translucent_map, lookup).rg : vec2(1.0);
+        return outside ? 1.0 : tap(ref <= stored ? 1.0 : 0.0, translucent, transmittance, ref, tolerance);
+    }
     const vec2 size = vec2(textureSize(depth_map, 0));
-    const vec2 texel = filter_mode == 1 ? uv * size - 0.5 : uv * size;
+    const vec2 texel = filter_mode == 1 ? lookup * size - 0.5 : lookup * size;
     const vec2 base = floor(texel) - float(pcf / 2);  // the first texel of the footprint
     const vec2 f = filter_mode == 1 ? fract(texel) : vec2(0.0);
     float sum = 0.0;
@@ -86,8 +92,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // texture fetch under a per-pixel condition after these gathers (random scenes, bilinear PCF
     // with translucent casters).
     const float opaque = sum / float(pcf * pcf);
-    const vec2 transmittance = translucent ? texture(translucent_map, uv).rg : vec2(1.0);
-    return tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
+    const vec2 transmittance = translucent ? texture(translucent_map, lookup).rg : vec2(1.0);
+    return outside ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
 }
 
 // The cube map's depth of P for the face that direction d falls in: that face's axis is d's
