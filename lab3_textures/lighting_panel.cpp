@@ -1,5 +1,7 @@
 #include "lighting_panel.h"
 
+#include "ui_widgets.h"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -12,16 +14,6 @@ const char* const kShadings[] = {"Flat (per triangle)", "Gouraud (per vertex)", 
 const char* const kFalloffs[] = {"smooth (inner..outer)", "edge 1-(1-cos b)/(1-cos a)"};
 const char* const kDistributions[] = {"GGX", "Beckmann"};
 const char* const kTypes[] = {"directional", "point", "spot"};
-
-bool combo(const char* label, int& value, const char* const* items, int count) {
-    return ImGui::Combo(label, &value, items, count);
-}
-
-template <typename Enum>
-void enum_combo(const char* label, Enum& value, const char* const* items, int count) {
-    int v = int(value);
-    if (combo(label, v, items, count)) value = Enum(v);
-}
 
 void edit_light(lab::LightDesc& l) {
     const bool directional = l.type == lab::LightDesc::Type::Directional;
@@ -70,11 +62,11 @@ void lighting_panel(Lighting& l) {
     ImGui::SetNextWindowSize(ImVec2(380.0f, 0.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Lighting");
     ImGui::TextDisabled("R (or saving the scene file) reloads it:\nthe file's values replace these edits.");
-    enum_combo("lighting model", l.options.model, kModels, 8);
-    enum_combo("shading", l.options.shading, kShadings, 3);
-    enum_combo("spot falloff", l.options.spot_falloff, kFalloffs, 2);
+    lab::ui::enum_combo("lighting model", l.options.model, kModels, 8);
+    lab::ui::enum_combo("shading", l.options.shading, kShadings, 3);
+    lab::ui::enum_combo("spot falloff", l.options.spot_falloff, kFalloffs, 2);
     if (l.options.model == lab::LightingDesc::Model::CookTorrance)
-        enum_combo("distribution", l.options.distribution, kDistributions, 2);
+        lab::ui::enum_combo("distribution", l.options.distribution, kDistributions, 2);
     if (l.options.model == lab::LightingDesc::Model::Toon) ImGui::SliderInt("toon bands", &l.options.toon_bands, 1, 16);
     ImGui::Checkbox("light markers", &l.options.markers);
 

@@ -1,5 +1,7 @@
 #include "shadows_panel.h"
 
+#include "ui_widgets.h"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -44,8 +46,7 @@ void shadows_panel(Lighting& l, float frame_ms, int renders) {
             }
             ImGui::SliderInt("PCF N (N x N taps)", &s.pcf, 1, 15);
             s.pcf = std::clamp(s.pcf | 1, 1, 15);  // odd: the kernel has a centre tap
-            int filter = int(s.filter);
-            if (ImGui::Combo("filter", &filter, kFilters, 2)) s.filter = lab::ShadowDesc::Filter(filter);
+            lab::ui::enum_combo("filter", s.filter, kFilters, 2);
             ImGui::DragFloat("depth bias", &s.bias, 1.0f, 0.0f, 1e7f, "%.1f", ImGuiSliderFlags_Logarithmic);
             ImGui::DragFloat("slope bias", &s.slope_bias, 0.05f, 0.0f, 100.0f, "%.2f");
             ImGui::DragFloat("normal offset (texels)", &s.normal_offset, 0.05f, 0.0f, 100.0f, "%.2f");

@@ -187,7 +187,8 @@ later_test_files() {
 
 # What a copy of lab $1 (a number) leaves out, one path a line (a folder stands for all it holds).
 left_out() {
-  local n="$1" d users
+  local n="$1" d users scene_files
+  scene_files=$(project_paths | grep '\.json$')
   {
     project_paths | later_lab_names "$n"
     echo docs/diffs  # lab N-1 → lab N is lab N's solution; the earlier ones are instructor material
@@ -197,9 +198,9 @@ left_out() {
     # names it ("textures/bricks.png") is left out. A folder no JSON file names stays.
     for d in scenes/*/; do
       d="${d%/}"
-      users=$(project_paths | grep '\.json$' | while read -r f; do
+      users=$(while read -r f; do
         if grep -qF "$(basename "$d")/" "$f"; then echo "$f"; fi
-      done)
+      done <<<"$scene_files")
       if [ -n "$users" ] && [ -z "$(later_lab_names "$n" keep <<<"$users")" ]; then echo "$d"; fi
     done
   } | topmost

@@ -50,10 +50,10 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     const float inv_w = 1.0 / clip.w;  // w: P's distance along a spot's axis; 1 for a directional map
     const vec3 ndc = clip.xyz * inv_w;
     const vec2 uv = ndc.xy * 0.5 + 0.5;
-    // Outside the map's coverage nothing was fitted to cast onto it: lit. No early return: Mesa
-    // 22.3's lavapipe crashes (SIGSEGV) on some fetches that follow a per-pixel return (a spot's
-    // map in slot 1 after a cube in slot 0); every pixel fetches, at the map's centre when it is
-    // outside, and the answer is picked at the end.
+    // Outside the map's coverage nothing was fitted to cast onto it: lit. No early return and no
+    // fetch under a per-pixel condition: Mesa 22.3's lavapipe crashes (SIGSEGV) on such fetches in
+    // this function (random scenes; a spot's map in slot 1 after a cube in slot 0). Every pixel
+    // fetches, at the map's centre when it is outside, and the answer is picked at the end.
     const bool outside = behind || !(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))));
     const vec2 lookup = outside ? vec2(0.5) : uv;
     // P's depth as the light sees it. The map ends just beyond the farthest caster: a receiver
@@ -61,6 +61,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // where it does. In front of the near plane (0): only casters clamped there can be nearer.
     const float ref = clamp(ndc.z, 0.0, 1.0);
     const float tolerance = s.translucent.x * inv_w;  // translucent casters, see above
+    // Translucent casters: their transmittance where P projects (once, not per tap).
+    const vec2 transmittance = translucent ? texture(translucent_map, lookup).rg : vec2(1.0);
     // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
     // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
     // around it and weights the results like a linear filter (what a comparison sampler does with
@@ -70,7 +72,6 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // A texel's weight per axis: nearest 1 (the padding texel N: 0); bilinear 1 − f, 1, …, 1, f.
     if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
         const float stored = texture(depth_map, lookup).r;
-        const vec2 transmittance = translucent ? texture(translucent_map, lookup).rg : vec2(1.0);
         return outside ? 1.0 : tap(ref <= stored ? 1.0 : 0.0, translucent, transmittance, ref, tolerance);
     }
     const vec2 size = vec2(textureSize(depth_map, 0));
@@ -87,12 +88,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
             sum += c.w * w0.x * w0.y + c.z * w1.x * w0.y + c.x * w0.x * w1.y + c.y * w1.x * w1.y;
         }
     }
-    // Translucent casters: their transmittance where P projects (once, not per tap). The fetch
-    // depends on the slot's constant only, not on `opaque`: Mesa 22.3's lavapipe crashes on a
-    // texture fetch under a per-pixel condition after these gathers (random scenes, bilinear PCF
-    // with translucent casters).
     const float opaque = sum / float(pcf * pcf);
-    const vec2 transmittance = translucent ? texture(translucent_map, lookup).rg : vec2(1.0);
     return outside ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
 }
 
