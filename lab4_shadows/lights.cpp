@@ -84,23 +84,22 @@ GpuLights Lighting::pack_lights() const {
     const std::vector<int> slots = shadow_slots();
     for (size_t i = 0; i < lights.size(); ++i) {
         const lab::LightDesc& l = lights[i];
-        const glm::vec4 shadow(float(slots[i]), 0.0f, 0.0f, 0.0f);
         const glm::vec4 radiance(glm::dvec3(l.color) * double(l.intensity), 0.0);
         const glm::vec4 attenuation(l.attenuation, 0.0f);
         switch (l.type) {
             case lab::LightDesc::Type::Directional:
                 if (g.counts.x < kMaxDirectional)
-                    g.directional[g.counts.x++] = {glm::vec4(unit_or(l.direction, down), 0.0f), radiance, shadow};
+                    g.directional[g.counts.x++] = {glm::vec4(unit_or(l.direction, down), 0.0f), radiance};
                 break;
             case lab::LightDesc::Type::Point:
                 if (g.counts.y < kMaxPoint)
-                    g.point[g.counts.y++] = {glm::vec4(l.position, 1.0f), radiance, attenuation, shadow};
+                    g.point[g.counts.y++] = {glm::vec4(l.position, 1.0f), radiance, attenuation};
                 break;
             case lab::LightDesc::Type::Spot:
                 if (g.counts.z < kMaxSpot)
                     g.spot[g.counts.z++] = {glm::vec4(l.position, 1.0f), glm::vec4(unit_or(l.direction, down), 0.0f),
                                             radiance, attenuation,
-                                            glm::vec4(spot_cone(l, options.spot_falloff), 0.0f, 0.0f), shadow};
+                                            glm::vec4(spot_cone(l, options.spot_falloff), 0.0f, 0.0f)};
                 break;
         }
     }
@@ -146,16 +145,21 @@ Variant variant_of(const Lighting& l) {
             l.options.toon_bands,
             0, 0, 0, 0, 0,  // the material's maps and probes: Renderer fills them in per draw
             int32_t(l.mip_view)};
-    // Lab 4: per shadow slot, what its lookup needs.
+    // Lab 4: per shadow slot, what its lookup needs and whose light it is. The k-th light of its
+    // type is at index k of its array in the light buffer (pack_lights keeps the scene's order).
     const std::vector<int> slots = l.shadow_slots();
+    for (int s = 0; s < kMaxShadowLights; ++s) v[constant::shadows + 5 * s + 4] = -1;  // no light's
+    int of_type[3] = {0, 0, 0};
     for (size_t i = 0; i < l.lights.size(); ++i) {
+        const int type = int(l.lights[i].type), k = of_type[type]++;
         if (slots[i] < 0) continue;
         const lab::ShadowDesc& s = l.lights[i].shadow;
-        int32_t* c = &v[constant::shadows + 4 * slots[i]];
+        int32_t* c = &v[constant::shadows + 5 * slots[i]];
         c[0] = uses_cube_map(l.lights[i]) ? 2 : 1;  // point lights and wide spots: a cube
         c[1] = s.pcf;
         c[2] = int32_t(s.filter);
         c[3] = l.translucent_casters;
+        c[4] = shadow_light_id(type, k);
     }
     return v;
 }

@@ -28,13 +28,11 @@ constexpr int kMaxShadowLights = 4;
 struct GpuDirectional {
     glm::vec4 direction;  // xyz: unit vector, the way the light travels
     glm::vec4 radiance;   // rgb: color × intensity
-    glm::vec4 shadow;     // lab 4: x = shadow slot, −1: casts none
 };
 struct GpuPoint {
     glm::vec4 position;
     glm::vec4 radiance;
     glm::vec4 attenuation;  // xyz: constant, linear, quadratic
-    glm::vec4 shadow;
 };
 struct GpuSpot {
     glm::vec4 position;
@@ -42,7 +40,6 @@ struct GpuSpot {
     glm::vec4 radiance;
     glm::vec4 attenuation;
     glm::vec4 cone;  // x: cos(outer), y: 1 / (cos(start of the ramp) − cos(outer)), 0 = hard edge
-    glm::vec4 shadow;
 };
 struct GpuLights {
     glm::uvec4 counts;  // x: directional, y: point, z: spot
@@ -103,8 +100,12 @@ namespace constant { enum : size_t { model, shading, directional_count, point_co
                                      nan_check, toon_bands,
                                      // lab 3, per material (variant_of leaves them 0; the renderer sets them per draw)
                                      albedo_map, specular_map, emissive_map, distorted_sampling, probes, mip_view,
-                                     // lab 4, per shadow slot s: shadows + 4s map kind (0 none, 1 2D, 2 cube),
-                                     // + 1 PCF kernel N, + 2 filter (0 nearest, 1 bilinear), + 3 translucent casters
-                                     shadows, count = shadows + 4 * kMaxShadowLights }; }
+                                     // lab 4, per shadow slot s: shadows + 5s map kind (0 none, 1 2D, 2 cube),
+                                     // + 1 PCF kernel N, + 2 filter (0 nearest, 1 bilinear), + 3 translucent casters,
+                                     // + 4 the light it belongs to (shadow_light_id, −1: none)
+                                     shadows, count = shadows + 5 * kMaxShadowLights }; }
+// Lab 4: how the shaders name the k-th light of a type (0 directional, 1 point, 2 spot) in a slot's
+// constant: LIGHT_ID in shadows.glsl. Fixed at pipeline creation, so every lookup is picked there.
+constexpr int32_t shadow_light_id(int type, int k) { return type * 64 + k; }
 using Variant = std::array<int32_t, constant::count>;
 Variant variant_of(const Lighting& lighting);

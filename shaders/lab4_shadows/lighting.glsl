@@ -42,10 +42,9 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 ambient;          // rgb: ambient color × intensity; a: 0 (the NaN self-test builds on it)
 } frame;
 
-// Lab 4: shadow.x = the light's shadow slot (shadows.glsl), −1 if it casts none.
-struct DirectionalLight { vec4 direction; vec4 radiance; vec4 shadow; };
-struct PointLight { vec4 position; vec4 radiance; vec4 attenuation; vec4 shadow; };
-struct SpotLight { vec4 position; vec4 direction; vec4 radiance; vec4 attenuation; vec4 cone; vec4 shadow; };
+struct DirectionalLight { vec4 direction; vec4 radiance; };
+struct PointLight { vec4 position; vec4 radiance; vec4 attenuation; };
+struct SpotLight { vec4 position; vec4 direction; vec4 radiance; vec4 attenuation; vec4 cone; };
 
 // A uniform buffer (4-6 KB, lights.h): read at the same address by every pixel, which a CPU
 // rasterizer does once per group of pixels; a storage buffer it reads lane by lane.
@@ -214,12 +213,13 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
 }
 
 // Lab 4: att · the reflectance · the share of the light that reaches P (1 lit, 0 in shadow,
-// between: PCF's partial coverage or translucent casters). The map is read only where the
-// light can reflect at all: not outside a spot's cone, not on surfaces facing away from it.
-vec3 lit(Material m, vec3 N, vec3 V, vec3 L, vec3 T, float att, vec4 shadow, vec3 P) {
+// between: PCF's partial coverage or translucent casters). slot: the light's shadow map, −1 for
+// none, a constant once the light loops below are unrolled (shadow_slot_of). The map is read only
+// where the light can reflect at all: not outside a spot's cone, not on surfaces facing away.
+vec3 lit(Material m, vec3 N, vec3 V, vec3 L, vec3 T, float att, int slot, vec3 P) {
     const vec3 r = att * reflectance(m, N, V, L, T);
-    if (!SHADOWS || r == vec3(0.0)) return r;
-    const float s = shadow_factor(int(shadow.x), P, N);
+    if (slot < 0 || r == vec3(0.0)) return r;
+    const float s = shadow_factor(slot, P, N);
     check(s);
     return r * s;
 }
@@ -231,7 +231,7 @@ vec3 shade(Material m, vec3 P, vec3 N, vec3 V, vec3 tangent) {
     const vec3 T = LIGHTING_MODEL == MODEL_WARD ? tangent_frame(N, tangent) : vec3(0.0);
     for (int i = 0; i < DIRECTIONAL_COUNT; ++i) {
         const DirectionalLight light = lights.directional[i];
-        color += light.radiance.rgb * lit(m, N, V, -light.direction.xyz, T, 1.0, light.shadow, P);
+        color += light.radiance.rgb * lit(m, N, V, -light.direction.xyz, T, 1.0, shadow_slot_of(LIGHT_ID(0, i)), P);
     }
     for (int i = 0; i < POINT_COUNT; ++i) {
         const PointLight light = lights.point[i];
@@ -240,7 +240,7 @@ vec3 shade(Material m, vec3 P, vec3 N, vec3 V, vec3 tangent) {
         const vec3 L = safe_normalize(to_light, N);  // d = 0: the light is on the surface, L = N
         const float att = attenuation(light.attenuation.xyz, d);
         check(att);
-        color += light.radiance.rgb * lit(m, N, V, L, T, att, light.shadow, P);
+        color += light.radiance.rgb * lit(m, N, V, L, T, att, shadow_slot_of(LIGHT_ID(1, i)), P);
     }
     for (int i = 0; i < SPOT_COUNT; ++i) {
         const SpotLight light = lights.spot[i];
@@ -249,7 +249,7 @@ vec3 shade(Material m, vec3 P, vec3 N, vec3 V, vec3 tangent) {
         const vec3 L = safe_normalize(to_light, N);
         const float att = attenuation(light.attenuation.xyz, d) * spot_factor(light.cone, dot(-L, light.direction.xyz));
         check(att);
-        color += light.radiance.rgb * lit(m, N, V, L, T, att, light.shadow, P);
+        color += light.radiance.rgb * lit(m, N, V, L, T, att, shadow_slot_of(LIGHT_ID(2, i)), P);
     }
     check(color);
     return color;

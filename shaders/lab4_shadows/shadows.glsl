@@ -8,14 +8,28 @@
 // a scene without shadow-casting lights has none at all (SHADOWS is false). Slot i's constants:
 // SHADOW_KIND_i 0 no map, 1 2D (directional, spot), 2 cube (point); SHADOW_PCF_i N: an N×N kernel
 // of taps; SHADOW_FILTER_i 0 nearest: manual compare, 1 bilinear: comparison sampler;
-// SHADOW_TRANSLUCENT_i: a transmittance map beside the depth map.
+// SHADOW_TRANSLUCENT_i: a transmittance map beside the depth map; SHADOW_LIGHT_i: whose map it is,
+// LIGHT_ID of the light (−1: nobody's).
 #define SHADOW_CONSTANTS(i, id)                                   \
     layout(constant_id = id) const int SHADOW_KIND_##i = 0;       \
     layout(constant_id = id + 1) const int SHADOW_PCF_##i = 1;    \
     layout(constant_id = id + 2) const int SHADOW_FILTER_##i = 0; \
-    layout(constant_id = id + 3) const bool SHADOW_TRANSLUCENT_##i = false;
-SHADOW_CONSTANTS(0, 14) SHADOW_CONSTANTS(1, 18) SHADOW_CONSTANTS(2, 22) SHADOW_CONSTANTS(3, 26)
+    layout(constant_id = id + 3) const bool SHADOW_TRANSLUCENT_##i = false; \
+    layout(constant_id = id + 4) const int SHADOW_LIGHT_##i = -1;
+SHADOW_CONSTANTS(0, 14) SHADOW_CONSTANTS(1, 19) SHADOW_CONSTANTS(2, 24) SHADOW_CONSTANTS(3, 29)
 const bool SHADOWS = SHADOW_KIND_0 != 0 || SHADOW_KIND_1 != 0 || SHADOW_KIND_2 != 0 || SHADOW_KIND_3 != 0;
+
+// The k-th light of a type (0 directional, 1 point, 2 spot), as SHADOW_LIGHT_i names it (lights.h:
+// shadow_light_id), and its slot (−1: it casts no shadow). The light loops have constant trip
+// counts, so once they are unrolled k is a constant and so is the slot: each light's code holds
+// its own lookup and nothing else. Read from the light buffer instead, the slot would be a
+// run-time switch, and a CPU rasterizer (lavapipe) runs every case of a switch for a block of
+// pixels, keeping the one that applies: every light would pay for every map (README, "What it costs").
+#define LIGHT_ID(type, k) ((type) * 64 + (k))
+int shadow_slot_of(int light) {
+    if (!SHADOWS) return -1;
+    return light == SHADOW_LIGHT_0 ? 0 : light == SHADOW_LIGHT_1 ? 1 : light == SHADOW_LIGHT_2 ? 2 : light == SHADOW_LIGHT_3 ? 3 : -1;
+}
 
 struct ShadowSlot {
     mat4 view_projection;  // (world − origin) → the map's clip space (2D maps)
