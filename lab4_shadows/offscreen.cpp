@@ -100,6 +100,7 @@ LayeredTarget& LayeredTarget::operator=(LayeredTarget&& other) noexcept {
     if (this != &other) {
         framebuffers = std::move(other.framebuffers);  // the old ones are destroyed before their views
         layer_views = std::move(other.layer_views);
+        faces = std::move(other.faces);
         image = std::move(other.image);
         pass = other.pass;
         size = other.size;
@@ -132,6 +133,16 @@ LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass p
         std::vector<VkImageView> views = {t.layer(layer)};
         views.insert(views.end(), more.begin(), more.end());
         t.framebuffers.push_back(make_square_framebuffer(vk, pass, views, size));
+    }
+    if (cube) {  // the six faces as a 2D array: a view of a cube-compatible image may see it so
+        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        view.image = t.image.image;
+        view.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+        view.format = format;
+        view.subresourceRange = {aspect, 0, 1, 0, 6};
+        VkImageView faces;
+        VK_CHECK(vkCreateImageView(vk.device(), &view, nullptr, &faces));
+        t.faces = lab::Handle<VkImageView>(faces, [device = vk.device()](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
     }
     return t;
 }

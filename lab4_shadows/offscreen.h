@@ -28,8 +28,10 @@ lab::Handle<VkFramebuffer> make_square_framebuffer(const lab::VulkanContext& vk,
 // A square image to render into and sample afterwards: 2D, or a cube map (six layers) with a 2D
 // view of each face to render into; one framebuffer of `pass` per layer.
 struct LayeredTarget {
-    lab::Image image;                                      // its view (2D or cube) is what shaders sample
+    lab::Image image;                                      // its view: 2D, or a cube
     std::vector<lab::Handle<VkImageView>> layer_views;     // a cube's faces (2D: none, the image's view)
+    lab::Handle<VkImageView> faces;  // a cube's six faces as one 2D array (layer = face): what the lookup
+                                     // samples, picking the face itself (shadows.glsl, shadow_cube)
     std::vector<lab::Handle<VkFramebuffer>> framebuffers;  // [layer]
     VkRenderPass pass = VK_NULL_HANDLE;
     uint32_t size = 0;   // size² texels
@@ -40,6 +42,7 @@ struct LayeredTarget {
     LayeredTarget& operator=(LayeredTarget&& other) noexcept;  // framebuffers, views, then the image
     uint32_t layers() const { return uint32_t(framebuffers.size()); }
     VkImageView layer(uint32_t i) const { return layer_views.empty() ? image.view.get() : layer_views[i].get(); }
+    VkImageView sampled() const { return faces ? faces.get() : image.view.get(); }  // what shaders read
     // begin_offscreen_pass() on layer `i`: cleared, viewport and scissor set.
     void begin(VkCommandBuffer cmd, uint32_t i, float depth = 1.0f) const;
     // Every layer cleared (a pass begun and ended on each), e.g. before anything samples it.

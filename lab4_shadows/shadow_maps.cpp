@@ -114,7 +114,7 @@ ShadowMaps::Map ShadowMaps::make_map(int light, bool cube, uint32_t resolution, 
 }
 
 // 3: GpuShadows; per slot: 4, 5: 2D depth (nearest, comparison), 6, 7: cube depth (nearest,
-// comparison), 8, 9: transmittance (2D, cube).
+// comparison; the faces as a 2D array), 8, 9: transmittance (2D, cube faces).
 std::vector<lab::DescriptorBinding> ShadowMaps::bindings() {
     std::vector<lab::DescriptorBinding> bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBoth}};
     bindings.resize(7, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kBoth, kMaxShadowLights});
@@ -132,8 +132,8 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
             const Map* m = slot < int(maps_.size()) && maps_[slot].cube == cube ? &maps_[slot] : &stand_in;
             if (binding >= 8 && !translucent_->active()) m = &stand_in;
             const VkSampler sampler = binding == 5 || binding == 7 ? compare_sampler_.get() : nearest_sampler_.get();
-            infos.push_back(binding >= 8 ? VkDescriptorImageInfo{sampler, m->translucent.transmittance.image.view, color}
-                                         : VkDescriptorImageInfo{sampler, m->depth.image.view, depth});
+            infos.push_back(binding >= 8 ? VkDescriptorImageInfo{sampler, m->translucent.transmittance.sampled(), color}
+                                         : VkDescriptorImageInfo{sampler, m->depth.sampled(), depth});
         }
         lab::write_image_descriptors(vk_, set, binding, infos);
     }

@@ -46,8 +46,9 @@ layout(std140, set = 0, binding = 3) uniform Shadows { ShadowSlot shadow_slots[4
 // (bilinear: each tap compares four texels with the reference and filters the results).
 layout(set = 0, binding = 4) uniform sampler2D shadow_depth[4];
 layout(set = 0, binding = 5) uniform sampler2DShadow shadow_compare[4];
-layout(set = 0, binding = 6) uniform samplerCube cube_depth[4];
-layout(set = 0, binding = 7) uniform samplerCubeShadow cube_compare[4];
+// Point lights' cube maps, read as 2D arrays of their six faces (layer = face, see shadow_cube).
+layout(set = 0, binding = 6) uniform sampler2DArray cube_depth[4];
+layout(set = 0, binding = 7) uniform sampler2DArrayShadow cube_compare[4];
 // Translucent casters (the second lesson): their transmittance maps and tap(), one tap's light.
 #include "translucent_shadows.glsl"
 
@@ -106,44 +107,76 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     return outside ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
 }
 
-// The cube map's depth of P for the face that direction d falls in: that face's axis is d's
-// largest coordinate, P's distance along it gives the perspective depth the pass stored.
-float cube_depth_of(vec3 v, vec3 d, ShadowSlot s) {
-    // EXERCISE cube_face_depth: which face does d fall in, how far is P along that face's axis, and what depth did that face's perspective projection store for that distance (the comment on params in ShadowSlot)? Wrong: point lights cast no shadow, or only on one face. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
+// The depth the cube map stored for P, v = P relative to the light: v's largest coordinate picks
+// the face, P's distance along that face's axis gives the perspective depth the pass stored.
+float cube_depth_of(vec3 v, ShadowSlot s) {
+    // EXERCISE cube_face_depth: which face does v fall in, how far is P along that face's axis, and what depth did that face's perspective projection store for that distance (the comment on params in ShadowSlot)? Wrong: point lights cast no shadow, or only on one face. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
     // STUB: return 0.0;  // everything in front of every caster: no shadow
-    const vec3 a = abs(d);
-    const float z = a.x >= a.y && a.x >= a.z ? abs(v.x) : (a.y >= a.z ? abs(v.y) : abs(v.z));
+    const vec3 a = abs(v);
+    const float z = max(a.x, max(a.y, a.z));
     return s.params.y - s.params.z / max(z, 1e-30);
     // END EXERCISE
 }
 
-// Point lights: the direction from the light to P picks the face and texel. PCF taps step one
-// texel across the face; a tap past the face's edge reads the neighbouring face (cube sampling
-// is seamless in Vulkan), compared with P's depth *in that face*, so edges show no seam.
-float shadow_cube(samplerCube depth_map, samplerCubeShadow compare_map, samplerCube translucent_map, int pcf,
+// The face direction d falls in and where, as Vulkan's cube sampling picks them (spec, "Cube Map
+// Face Selection"): the largest coordinate picks the face (layer 0…5: +X, −X, +Y, −Y, +Z, −Z),
+// the other two divided by it give (s, t) in [0, 1]. Ties go to x, then y.
+vec3 cube_face_uv(vec3 d) {
+    const vec3 a = abs(d);
+    const bool x = a.x >= a.y && a.x >= a.z, y = !x && a.y >= a.z;
+    const float major = x ? a.x : (y ? a.y : a.z);
+    const vec2 sc_tc = x ? vec2(d.x > 0.0 ? -d.z : d.z, -d.y)                   // ±X: (∓z, −y)
+                     : (y ? vec2(d.x, d.y > 0.0 ? d.z : -d.z)                   // ±Y: (x, ±z)
+                          : vec2(d.z > 0.0 ? d.x : -d.x, -d.y));                // ±Z: (±x, −y)
+    const float layer = x ? (d.x > 0.0 ? 0.0 : 1.0) : (y ? (d.y > 0.0 ? 2.0 : 3.0) : (d.z > 0.0 ? 4.0 : 5.0));
+    return vec3(sc_tc / major * 0.5 + 0.5, layer);
+}
+
+// Point lights: the direction from the light to P picks the face and texel, and PCF runs on that
+// face's texel grid as shadow_2d does (four compared texels per gather). The maps are read as a 2D
+// array of the six faces, the face picked here once, not by a cube sampler: a CPU rasterizer
+// (lavapipe) picks the face anew for every lookup (a 3×3 kernel cost 2.5× as much). The kernel
+// stays on P's face: a gather past its edge is moved back inside, so the edge texels count twice
+// there — less than a texel of blur, and no crack, as every texel is compared with P's depth in
+// its own face. (Following the kernel into the neighbouring face costs 1.8× as much here.)
+float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sampler2DArray translucent_map, int pcf,
                   int filter_mode, bool translucent, ShadowSlot s, vec3 P, vec3 N) {
     vec3 v = P - s.origin.xyz;
     const vec3 a0 = abs(v);
     v += N * s.params.x * max(a0.x, max(a0.y, a0.z));  // normal offset, texels grow with distance
     const vec3 a = abs(v);
     const float z = max(a.x, max(a.y, a.z));
-    if (!(z > 0.0)) return 1.0;  // P at the light itself
-    const vec3 axis = a.x >= a.y && a.x >= a.z ? vec3(1, 0, 0) : (a.y >= a.z ? vec3(0, 1, 0) : vec3(0, 0, 1));
-    const vec3 u = axis.x > 0.0 ? vec3(0, 1, 0) : vec3(1, 0, 0);
-    const vec3 w = cross(axis, u);
-    const float step = 2.0 * z / float(textureSize(depth_map, 0).x);  // one texel at P's distance
+    // P at the light itself: lit. As in shadow_2d, no early return (lavapipe): every pixel reads,
+    // along +X when it has no direction, and the answer is picked at the end.
+    const bool at_light = !(z > 0.0);
+    const vec3 to_p = at_light ? vec3(1.0, 0.0, 0.0) : v;
+    const vec3 face = cube_face_uv(to_p);  // (s, t, layer)
+    // Beyond the far plane (past the farthest caster): compared as 1, as in shadow_2d.
+    const float ref = clamp(cube_depth_of(to_p, s), 0.0, 1.0);
     const float tolerance = translucent ? s.translucent.x / z : 0.0;  // translucent casters, see above
+    const vec2 transmittance = translucent ? texture(translucent_map, face).rg : vec2(1.0);
+    if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
+        const float stored = texture(depth_map, face).r;
+        return at_light ? 1.0 : tap(ref <= stored ? 1.0 : 0.0, translucent, transmittance, ref, tolerance);
+    }
+    // The footprint and its weights, as in shadow_2d.
+    const float size = float(textureSize(depth_map, 0).x);
+    const vec2 texel = filter_mode == 1 ? face.xy * size - 0.5 : face.xy * size;
+    const vec2 base = floor(texel) - float(pcf / 2);
+    const vec2 f = filter_mode == 1 ? fract(texel) : vec2(0.0);
+    const vec2 inside = vec2(1.0 / size, 1.0 - 1.0 / size);  // a gather's centre, a texel inside the face
     float sum = 0.0;
-    for (int y = -(pcf / 2); y <= pcf / 2; ++y) {
-        for (int x = -(pcf / 2); x <= pcf / 2; ++x) {
-            const vec3 d = v + (float(x) * u + float(y) * w) * step;
-            // Beyond the far plane (past the farthest caster): compared as 1, as in shadow_2d.
-            const float ref = clamp(cube_depth_of(v, d, s), 0.0, 1.0);
-            const float lit = filter_mode == 1 ? texture(compare_map, vec4(d, ref)) : (ref <= texture(depth_map, d).r ? 1.0 : 0.0);
-            sum += tap(lit, translucent, translucent ? texture(translucent_map, d).rg : vec2(1.0), ref, tolerance);
+    for (int by = 0; by <= pcf; by += 2) {
+        for (int bx = 0; bx <= pcf; bx += 2) {
+            const vec2 st = clamp((base + vec2(bx, by) + 1.0) / size, inside.x, inside.y);
+            const vec4 c = textureGather(compare_map, vec3(st, face.z), ref);  // (0,1) (1,1) (1,0) (0,0)
+            const vec2 w0 = vec2(bx == 0 ? 1.0 - f.x : 1.0, by == 0 ? 1.0 - f.y : 1.0);
+            const vec2 w1 = vec2(bx + 1 == pcf ? f.x : 1.0, by + 1 == pcf ? f.y : 1.0);
+            sum += c.w * w0.x * w0.y + c.z * w1.x * w0.y + c.x * w0.x * w1.y + c.y * w1.x * w1.y;
         }
     }
-    return sum / float(pcf * pcf);
+    const float opaque = sum / float(pcf * pcf);
+    return at_light ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
 }
 
 // Slot i's lookup with slot i's constants (samplers are picked with constant indices).

@@ -6,7 +6,7 @@
 // Translucent casters: r = Π(1 − opacity) of the front faces (as the light sees them) along
 // the texel's ray, g = the depth of the nearest one.
 layout(set = 0, binding = 8) uniform sampler2D translucency[4];
-layout(set = 0, binding = 9) uniform samplerCube cube_translucency[4];
+layout(set = 0, binding = 9) uniform sampler2DArray cube_translucency[4];  // a cube's faces (layer = face)
 
 // A receiver less than 2 texels (in world units) behind the nearest translucent caster is that
 // caster itself. In depth that is K / z, z = P's distance along the map's axis (an orthographic
