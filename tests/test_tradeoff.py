@@ -246,7 +246,8 @@ class Configurations(unittest.TestCase):
         cs = knobs.lab3_configs(True)
         self.assertEqual([(c["config"], c["knob"], c["default"], c["seed"]) for c in cs],
                          [("nearest", 1, False, ""), ("trilinear", 1, False, ""),
-                          ("trilinear + aniso 16", 16, True, "seed 002")])
+                          ("trilinear + aniso 16", 16, False, "seed 002"),
+                          ("bilinear, nearest mips + probes 4", 4, True, "")])
         self.assertEqual(cs[0]["scene"]["materials"]["floor"]["sampler"],
                          {"filter": "nearest", "mipmaps": "none", "anisotropy": 1, "wrap": "repeat"})
         self.assertEqual(len(knobs.lab3_configs(False)), 11)
