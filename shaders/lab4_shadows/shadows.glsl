@@ -24,7 +24,7 @@ const bool SHADOWS = SHADOW_KIND_0 != 0 || SHADOW_KIND_1 != 0 || SHADOW_KIND_2 !
 // counts, so once they are unrolled k is a constant and so is the slot: each light's code holds
 // its own lookup and nothing else. Read from the light buffer instead, the slot would be a
 // run-time switch, and a CPU rasterizer (lavapipe) runs every case of a switch for a block of
-// pixels, keeping the one that applies: every light would pay for every map (README, "What it costs").
+// pixels, keeping the one that applies: every light would pay for every map (README, "Two passes").
 #define LIGHT_ID(type, k) ((type) * 64 + (k))
 int shadow_slot_of(int light) {
     if (!SHADOWS) return -1;
