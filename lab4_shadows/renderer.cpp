@@ -40,14 +40,11 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     // Geometry: upload each distinct mesh once, remember what to draw.
     lab::MeshLibrary library;  // reads each model file once
     std::vector<Caster> casters;  // lab 4: what the shadow maps draw
-    std::map<std::string, bool> closed;  // lab 4: per mesh, lab::is_closed
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
-            const lab::Mesh mesh = library.mesh(object);
-            closed[key] = lab::is_closed(mesh);  // lab 4: the shadow pass culls a closed caster's far side
-            it = meshes_.emplace(key, lab::upload_mesh(vk, mesh)).first;
+            it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
         }
         const lab::MaterialDesc& material = scene.materials.at(object.material);
         items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
@@ -60,8 +57,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         items_.back().centre = glm::vec3(0.5 * (box.lo + box.hi));
         items_.back().mirrored = glm::determinant(glm::dmat3(glm::dmat4(lit.model))) < 0.0;
         const bool convex = object.mesh_path.empty() && object.mesh != "torus";  // primitives but the torus
-        casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows, convex,
-                           closed[key] && !items_.back().mirrored});
+        casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows, convex});
     }
     shadow_maps_ = std::make_unique<ShadowMaps>(vk, std::move(casters), lighting, shader_dir);
     // Light markers: a cube per point light, a cone per spot and directional light.

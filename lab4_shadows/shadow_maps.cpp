@@ -60,17 +60,6 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                   .dynamic_depth_bias()
                   .depth_clamp(vk.enabled_features().depthClamp)
                   .build(vk, depth_pass_);
-    // A closed caster with the light outside it: the nearest surface along any ray from the light
-    // enters the solid, so it faces the light. The faces turned away can't be nearest: culled, they
-    // cost nothing (half the triangles; a cube face's view mirrors the winding: the other side).
-    for (int cube = 0; cube < 2; ++cube)
-        facing_[cube] = lab::PipelineBuilder(casters)
-                            .shaders(vertex_shader, VK_NULL_HANDLE)
-                            .cull(cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT)
-                            .color_attachments(0)
-                            .dynamic_depth_bias()
-                            .depth_clamp(vk.enabled_features().depthClamp)
-                            .build(vk, depth_pass_);
     // The second lesson: transmittance maps beside the depth maps (translucent_shadows.cpp).
     translucent_.emplace(vk, depth_format_, lighting.translucent_casters, casters, vertex_shader, shader_dir);
 
@@ -186,11 +175,11 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
 // Draws the map's casters (`in_map`, casters_for) into the current pass: opaque ones with the
 // bound depth-only pipeline, or (translucent) the translucent ones with both translucent pipelines.
 void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting,
-                              const std::vector<bool>& which) const {
+                              bool translucent, const std::vector<bool>& in_map) const {
     const lab::GpuMesh* bound = nullptr;
     for (size_t i = 0; i < objects_.size(); ++i) {
         const Caster& c = objects_[i];
-        if (!which[i]) continue;
+        if (!in_map[i] || translucent_material(lighting, c.material) != translucent) continue;
         const ShadowConstants constants{glm::mat4(world_to_clip * glm::dmat4(c.model)),
                                         glm::vec4(1.0f - lighting.materials[c.material].opacity)};
         if (c.mesh != bound) {
@@ -245,33 +234,17 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
 
-    // Each caster once: translucent ones into the transmittance map, closed ones the light is
-    // outside of (a directional light is outside everything) with the faces turned away culled,
-    // the rest with both sides.
-    std::vector<bool> both_sides(objects_.size(), false), facing(objects_.size(), false), translucent(objects_.size(), false);
-    for (size_t i = 0; i < objects_.size(); ++i) {
-        if (!in_map[i]) continue;
-        const Box& b = objects_[i].box;
-        const bool outside = light.type == lab::LightDesc::Type::Directional ||
-                             glm::any(glm::lessThan(position, b.lo)) || glm::any(glm::greaterThan(position, b.hi));
-        (translucent_material(lighting, objects_[i].material) ? translucent
-         : objects_[i].closed && outside                      ? facing
-                                                              : both_sides)[i] = true;
-    }
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);
         map.depth.begin(cmd, face);
-        for (const auto& [pipeline, which] : {std::pair{&opaque_, &both_sides}, std::pair{&facing_[map.cube], &facing}}) {
-            if (std::none_of(which->begin(), which->end(), [](bool b) { return b; })) continue;
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
-            // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
-            // (grows with how steeply the triangle's depth changes across a texel).
-            vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
-            draw_casters(cmd, world_to_clip, lighting, *which);
-        }
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
+        // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
+        // (grows with how steeply the triangle's depth changes across a texel).
+        vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
+        draw_casters(cmd, world_to_clip, lighting, false, in_map);
         vkCmdEndRenderPass(cmd);
         if (translucent_->active())
             translucent_->render(cmd, map.translucent, face, map.cube,
-                                 [&] { draw_casters(cmd, world_to_clip, lighting, translucent); });
+                                 [&] { draw_casters(cmd, world_to_clip, lighting, true, in_map); });
     }
 }

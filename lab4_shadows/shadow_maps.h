@@ -38,8 +38,6 @@ struct Caster {
     uint32_t material;  // index into Lighting::materials (its opacity)
     bool casts;         // ObjectDesc::cast_shadows
     bool convex;        // a convex mesh (primitives but the torus) shadows only its own unlit side
-    bool closed;        // lab::is_closed and not mirrored: from outside, only faces turned towards
-                        // the light can be nearest to it
 };
 
 class ShadowMaps {
@@ -75,8 +73,8 @@ private:
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
-    void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting,
-                      const std::vector<bool>& which) const;
+    void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting, bool translucent,
+                      const std::vector<bool>& in_map) const;
     uint32_t clamp_resolution(int requested, bool cube) const;
     std::vector<bool> casters_for(const lab::LightDesc& light) const;
 
@@ -85,8 +83,7 @@ private:
     std::vector<Box> receiver_boxes_;  // every object's
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     lab::Handle<VkRenderPass> depth_pass_;        // depth only
-    lab::PipelineBuilder::Result opaque_;                    // depth only, depth bias, both sides
-    lab::PipelineBuilder::Result facing_[2];  // the same for closed casters: [cube] faces turned away culled
+    lab::PipelineBuilder::Result opaque_;                    // depth only, depth bias
     std::optional<TranslucentShadows> translucent_;  // its pass; pipelines when some caster is translucent
     lab::Handle<VkSampler> nearest_sampler_, compare_sampler_;
     std::vector<Map> maps_;          // one per shadow slot, in slot order

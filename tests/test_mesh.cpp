@@ -364,39 +364,6 @@ TEST(Primitives, NonDefaultTessellationsStayValid) {
     }
 }
 
-// lab::is_closed (lab 4's shadow pass culls the faces of closed meshes turned away from the
-// light) against the shapes: every primitive but the plane bounds a solid, at any tessellation.
-TEST(Primitives, IsClosedForEverySolidAndNotForThePlane) {
-    for (const std::string& name : lab::primitive_mesh_names()) {
-        lab::ObjectDesc o;
-        o.mesh = name;
-        EXPECT_EQ(lab::is_closed(lab::make_mesh(o)), name != "plane") << name;
-    }
-    for (const Mesh& m : {lab::make_sphere(3, 2), lab::make_sphere(128, 64), lab::make_cylinder(3, 1),
-                          lab::make_cylinder(64, 32), lab::make_cone(6, 5), lab::make_torus(3, 3),
-                          lab::make_torus(128, 64), lab::make_icosphere(3)})
-        EXPECT_TRUE(lab::is_closed(m)) << triangle_count(m) << " triangles";
-}
-
-// What breaks a solid: a hole, one triangle wound the other way, a face used twice, no triangles.
-TEST(Primitives, IsClosedFindsHolesFlipsAndDoubledFaces) {
-    const Mesh cube = lab::make_cube();
-    Mesh hole = cube;
-    hole.indices.resize(hole.indices.size() - 3);
-    EXPECT_FALSE(lab::is_closed(hole));
-    Mesh flipped = cube;
-    std::swap(flipped.indices[0], flipped.indices[1]);
-    EXPECT_FALSE(lab::is_closed(flipped));
-    Mesh doubled = cube;
-    doubled.indices.insert(doubled.indices.end(), cube.indices.begin(), cube.indices.begin() + 3);
-    EXPECT_FALSE(lab::is_closed(doubled));
-    EXPECT_FALSE(lab::is_closed(Mesh{}));
-    // Inside out (every triangle reversed) is still one orientation throughout: closed.
-    Mesh inside_out = cube;
-    for (size_t t = 0; t < inside_out.indices.size(); t += 3) std::swap(inside_out.indices[t], inside_out.indices[t + 1]);
-    EXPECT_TRUE(lab::is_closed(inside_out));
-}
-
 TEST(Primitives, VolumesConvergeWithTessellation) {
     EXPECT_NEAR(signed_volume(lab::make_sphere(256, 128)), 4.0 / 3.0 * kPi * 0.125, 0.0005);
     EXPECT_NEAR(signed_volume(lab::make_icosphere(5)), 4.0 / 3.0 * kPi * 0.125, 0.001);
@@ -830,7 +797,6 @@ TEST(ObjLoader, ShippedPawnModel) {
     expect_valid_vertices(m, "pawn");
     expect_winding_matches_normals(m);
     expect_closed(m);
-    EXPECT_TRUE(lab::is_closed(m));
     EXPECT_GT(signed_volume(m), 0.0);
     ASSERT_EQ(model.materials.size(), 1u);
     EXPECT_EQ(model.triangle_material, std::vector<int>(triangle_count(m), 0));

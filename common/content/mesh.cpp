@@ -10,7 +10,6 @@
 #include "scene.h"
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -66,31 +65,6 @@ void compute_tangents(Mesh& mesh) {
         const float w = glm::dot(glm::cross(n, t), usum[i]) < 0.0f ? -1.0f : 1.0f;
         v.tangent = glm::vec4(t, w);
     }
-}
-
-// ---------------------------------------------------------------------------
-// Closed meshes.
-// ---------------------------------------------------------------------------
-bool is_closed(const Mesh& mesh) {
-    // One id per position (exact bits, −0 = +0): vertices split for normals or UVs are one corner.
-    std::map<std::array<float, 3>, uint32_t> ids;
-    std::vector<uint32_t> corner(mesh.vertices.size());
-    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
-        const glm::vec3 p = mesh.vertices[i].position + 0.0f;
-        corner[i] = ids.try_emplace({p.x, p.y, p.z}, uint32_t(ids.size())).first->second;
-    }
-    // Per undirected edge {a < b}: how many triangles run a → b, and how many b → a.
-    std::map<std::pair<uint32_t, uint32_t>, std::array<int, 2>> edges;
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        const uint32_t v[3] = {corner[mesh.indices[t]], corner[mesh.indices[t + 1]], corner[mesh.indices[t + 2]]};
-        if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;  // no area: no side
-        for (int e = 0; e < 3; ++e) {
-            const uint32_t a = v[e], b = v[(e + 1) % 3];
-            ++edges[{std::min(a, b), std::max(a, b)}][a < b ? 0 : 1];
-        }
-    }
-    if (edges.empty()) return false;
-    return std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second[0] == 1 && e.second[1] == 1; });
 }
 
 Mesh make_mesh(const ObjectDesc& object) {

@@ -35,12 +35,6 @@ struct Mesh {
 // see docs/meshes.md); vertices without usable UVs get any unit vector ⟂ normal.
 void compute_tangents(Mesh& mesh);
 
-// True when the mesh bounds a solid: every edge (vertices with the same position count as one)
-// belongs to exactly two triangles, which run along it in opposite directions (one orientation
-// throughout). Zero-area triangles (two corners at one position) are left out. Seen from
-// outside such a mesh, every face turned away from the eye lies behind one turned towards it.
-bool is_closed(const Mesh& mesh);
-
 struct ObjectDesc;
 struct LoadedModel;  // obj_model.h
 
