@@ -81,9 +81,7 @@ glm::vec4 Lighting::ambient_radiance() const {
 GpuLights Lighting::pack_lights() const {
     GpuLights g{};
     const glm::vec3 down(0.0f, -1.0f, 0.0f);
-    const std::vector<int> slots = shadow_slots();
-    for (size_t i = 0; i < lights.size(); ++i) {
-        const lab::LightDesc& l = lights[i];
+    for (const lab::LightDesc& l : lights) {
         const glm::vec4 radiance(glm::dvec3(l.color) * double(l.intensity), 0.0);
         const glm::vec4 attenuation(l.attenuation, 0.0f);
         switch (l.type) {
@@ -92,8 +90,7 @@ GpuLights Lighting::pack_lights() const {
                     g.directional[g.counts.x++] = {glm::vec4(unit_or(l.direction, down), 0.0f), radiance};
                 break;
             case lab::LightDesc::Type::Point:
-                if (g.counts.y < kMaxPoint)
-                    g.point[g.counts.y++] = {glm::vec4(l.position, 1.0f), radiance, attenuation};
+                if (g.counts.y < kMaxPoint) g.point[g.counts.y++] = {glm::vec4(l.position, 1.0f), radiance, attenuation};
                 break;
             case lab::LightDesc::Type::Spot:
                 if (g.counts.z < kMaxSpot)

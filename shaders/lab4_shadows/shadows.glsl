@@ -52,6 +52,16 @@ layout(set = 0, binding = 7) uniform sampler2DArrayShadow cube_compare[4];
 // Translucent casters (the second lesson): their transmittance maps and tap(), one tap's light.
 #include "translucent_shadows.glsl"
 
+// PCF's share of one gather: the four texels it compared, c = (0,1) (1,1) (1,0) (0,0) as
+// textureGather returns them, for the gather at columns bx, bx + 1 and rows by, by + 1 of an N×N
+// footprint (N = pcf), weighted per axis: nearest 1 (the padding texel N: 0, f = 0); bilinear
+// 1 − f, 1, …, 1, f. Both lookups below add these up over the footprint's gathers.
+float pcf_share(vec4 c, int bx, int by, int pcf, vec2 f) {
+    const vec2 w0 = vec2(bx == 0 ? 1.0 - f.x : 1.0, by == 0 ? 1.0 - f.y : 1.0);
+    const vec2 w1 = vec2(bx + 1 == pcf ? f.x : 1.0, by + 1 == pcf ? f.y : 1.0);
+    return c.w * w0.x * w0.y + c.z * w1.x * w0.y + c.x * w0.x * w1.y + c.y * w1.x * w1.y;
+}
+
 // Directional and spot lights: P projected into the map; PCF averages N×N taps one texel apart.
 float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D translucent_map, int pcf, int filter_mode,
                 bool translucent, ShadowSlot s, vec3 P, vec3 N) {
@@ -83,8 +93,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // around it and weights the results like a linear filter (what a comparison sampler does with
     // LINEAR; done by hand, as that needs a depth format the device filters: lavapipe has none).
     // Both read the comparison sampler four texels at a time (textureGather): N taps touch N
-    // (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF costs 4 gathers, not 9 lookups.
-    // A texel's weight per axis: nearest 1 (the padding texel N: 0); bilinear 1 − f, 1, …, 1, f.
+    // (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF costs 4 gathers, not 9 lookups
+    // (pcf_share weights each).
     if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
         const float stored = texture(depth_map, lookup).r;
         return outside ? 1.0 : tap(ref <= stored ? 1.0 : 0.0, translucent, transmittance, ref, tolerance);
@@ -97,10 +107,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     for (int by = 0; by <= pcf; by += 2) {
         for (int bx = 0; bx <= pcf; bx += 2) {
             // Columns bx, bx + 1 and rows by, by + 1 of the footprint, compared with ref at once.
-            const vec4 c = textureGather(compare_map, (base + vec2(bx, by) + 1.0) / size, ref);  // (0,1) (1,1) (1,0) (0,0)
-            const vec2 w0 = vec2(bx == 0 ? 1.0 - f.x : 1.0, by == 0 ? 1.0 - f.y : 1.0);
-            const vec2 w1 = vec2(bx + 1 == pcf ? f.x : 1.0, by + 1 == pcf ? f.y : 1.0);
-            sum += c.w * w0.x * w0.y + c.z * w1.x * w0.y + c.x * w0.x * w1.y + c.y * w1.x * w1.y;
+            sum += pcf_share(textureGather(compare_map, (base + vec2(bx, by) + 1.0) / size, ref), bx, by, pcf, f);
         }
     }
     const float opaque = sum / float(pcf * pcf);
@@ -169,10 +176,7 @@ float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sa
     for (int by = 0; by <= pcf; by += 2) {
         for (int bx = 0; bx <= pcf; bx += 2) {
             const vec2 st = clamp((base + vec2(bx, by) + 1.0) / size, inside.x, inside.y);
-            const vec4 c = textureGather(compare_map, vec3(st, face.z), ref);  // (0,1) (1,1) (1,0) (0,0)
-            const vec2 w0 = vec2(bx == 0 ? 1.0 - f.x : 1.0, by == 0 ? 1.0 - f.y : 1.0);
-            const vec2 w1 = vec2(bx + 1 == pcf ? f.x : 1.0, by + 1 == pcf ? f.y : 1.0);
-            sum += c.w * w0.x * w0.y + c.z * w1.x * w0.y + c.x * w0.x * w1.y + c.y * w1.x * w1.y;
+            sum += pcf_share(textureGather(compare_map, vec3(st, face.z), ref), bx, by, pcf, f);
         }
     }
     const float opaque = sum / float(pcf * pcf);
