@@ -9,6 +9,8 @@
 #   bash scripts/exercise.sh --check-copies             # write and check a copy of every lab with
 #                                                       # exercises (CTest: student_copy_no_answers)
 #   bash scripts/exercise.sh --prove BUILD_DIR LAB      # the grader's own test (CTest: grader_labN)
+#   bash scripts/exercise.sh --solution-lines LAB       # the substantive solution lines of LAB's and
+#                                                       # every later lab's exercises (name US where US code)
 #
 # LAB is 1, lab1 or lab1_camera. Without NAMEs every exercise of the lab is cut out.
 #
@@ -492,6 +494,12 @@ case "${1:-}" in
     check_copy "$2" "$lab"
     exit $?
     ;;
+  --solution-lines)
+    [ $# -eq 2 ] || die "usage: exercise.sh --solution-lines LAB"
+    lab=$(resolve_lab "$2")
+    solution_lines "$lab"
+    exit 0
+    ;;
   --check-copies)
     [ $# -eq 1 ] || die "usage: exercise.sh --check-copies"
     check_copies
@@ -502,7 +510,7 @@ case "${1:-}" in
     exit 0
     ;;
   "" | -h | --help)
-    sed -n '2,42p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,44p' "$0" | sed 's/^# \{0,1\}//'
     exit 0
     ;;
   --list)
