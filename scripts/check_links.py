@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""check_links.py — every relative link and #anchor in the Markdown files of a tree resolves.
+
+    python3 scripts/check_links.py [DIR]     # DIR: the project or a student copy (default: .)
+
+Looks at every *.md file under DIR (not .git/, build*/, node_modules/, student/, out/): each
+inline link or picture [text](target) / ![alt](target) outside code that is not an URL
+(http:, mailto:, …) must name a file or folder that exists, relative to the Markdown file;
+a #anchor (alone, or after a .md file) must be the slug of one of that file's headings,
+computed as the course site (markdown-it-anchor with github-slugger) and GitHub compute it:
+the heading's text without its markup, lower-case, punctuation and symbols dropped, spaces
+turned into -, and -1, -2, … appended to repeats.
+Prints one line per broken link (file:line: the target and why) and exits 1 if there is one,
+0 if none; 2 on bad input.
+"""
+import os
+import re
+import sys
+import unicodedata
+from urllib.parse import unquote
+
+SKIP_DIRS = {".git", "node_modules", "student", "out"}
+FENCE = re.compile(r"^ {0,3}(`{3,}|~{3,})")
+HEADING = re.compile(r"^ {0,3}(#{1,6})[ \t]+(.*?)[ \t#]*$")
+LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*<?([^()\s<>]*(?:\([^()\s]*\)[^()\s<>]*)*)>?(?:\s+\"[^\"]*\")?\s*\)")
+CODE_SPAN = re.compile(r"(`+)(.+?)\1")
+
+
+def heading_text(raw):
+    """The text markdown-it-anchor slugs: code spans' content, link text, no emphasis or tags."""
+    text = CODE_SPAN.sub(lambda m: m.group(2).strip(), raw)
+    text = re.sub(r"!?\[([^\]]*)\]\([^)]*\)", r"\1", text)
+    text = re.sub(r"<[^>]+>", "", text)
+    text = re.sub(r"(\*+|(?<!\w)_+|_+(?!\w))", "", text)
+    return text.replace("&amp;", "&").replace("&lt;", "<").replace("&gt;", ">")
+
+
+def slug(text):
+    """github-slugger: lower-case, keep letters, marks, digits (not ², ½), '_', '-' and ' ',
+    then ' ' → '-'."""
+    kept = "".join(c for c in text.lower()
+                   if c in " -_" or unicodedata.category(c)[0] in "LM"
+                   or unicodedata.category(c) in ("Nd", "Nl"))
+    return kept.replace(" ", "-")
+
+
+def lines_outside_code(path):
+    """(line number, line) of the file outside fenced code blocks, with code spans blanked."""
+    fence = None
+    with open(path, encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            line = line.rstrip("\n")
+            m = FENCE.match(line)
+            if fence:
+                if m and m.group(1)[0] == fence[0] and len(m.group(1)) >= len(fence):
+                    fence = None
+                continue
+            if m:
+                fence = m.group(1)
+                continue
+            yield number, line
+
+
+_anchor_cache = {}
+
+
+def anchors(path):
+    if path not in _anchor_cache:
+        seen, result = {}, set()
+        for _, line in lines_outside_code(path):
+            m = HEADING.match(line)
+            if not m:
+                continue
+            base = slug(heading_text(m.group(2)))
+            s = base
+            while s in seen:  # github-slugger: the n-th repeat of base gets base-n
+                seen[base] += 1
+                s = f"{base}-{seen[base]}"
+            seen[s] = 0
+            result.add(s)
+        for _, line in lines_outside_code(path):  # explicit <a id="…"> / <a name="…">
+            for m in re.finditer(r"<a\s+(?:id|name)=\"([^\"]+)\"", line):
+                result.add(m.group(1))
+        _anchor_cache[path] = result
+    return _anchor_cache[path]
+
+
+def markdown_files(top):
+    for here, dirs, files in os.walk(top):
+        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith("build"))
+        for name in sorted(files):
+            if name.endswith(".md"):
+                yield os.path.join(here, name)
+
+
+def check(top):
+    problems = 0
+    for md in markdown_files(top):
+        shown = os.path.relpath(md, top)
+        for number, line in lines_outside_code(md):
+            line = CODE_SPAN.sub(lambda m: " " * len(m.group(0)), line)
+            for m in LINK.finditer(line):
+                target = m.group(1)
+                if not target or re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*:", target):
+                    continue  # an URL: not checked offline
+                file_part, _, anchor = target.partition("#")
+                dest = md if not file_part else os.path.normpath(
+                    os.path.join(os.path.dirname(md), unquote(file_part)))
+                why = None
+                if not os.path.exists(dest):
+                    why = "no such file or folder"
+                elif os.path.relpath(dest, top).startswith(".."):
+                    why = "outside the tree"
+                elif anchor:
+                    if not dest.endswith(".md") or os.path.isdir(dest):
+                        why = "an anchor into a file that is not Markdown"
+                    elif unquote(anchor) not in anchors(dest):
+                        why = f"no heading with the anchor #{anchor} in {os.path.relpath(dest, top)}"
+                if why:
+                    print(f"{shown}:{number}: broken link ({target}): {why}")
+                    problems += 1
+    return problems
+
+
+def main(argv):
+    if len(argv) > 1 and argv[1] in ("-h", "--help"):
+        print(__doc__.strip())
+        return 0
+    if len(argv) > 2:
+        print("check_links: usage: check_links.py [DIR]", file=sys.stderr)
+        return 2
+    top = argv[1] if len(argv) == 2 else "."
+    if not os.path.isdir(top):
+        print(f"check_links: {top}: no such folder", file=sys.stderr)
+        return 2
+    count = sum(1 for _ in markdown_files(top))
+    problems = check(top)
+    if problems:
+        print(f"check_links: {top}: {problems} broken link(s) in {count} Markdown files")
+        return 1
+    print(f"check_links: {top}: every relative link and anchor of {count} Markdown files resolves")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
