@@ -2,6 +2,7 @@
 """check_links.py — every relative link and #anchor in the Markdown files of a tree resolves.
 
     python3 scripts/check_links.py [DIR]     # DIR: the project or a student copy (default: .)
+    python3 scripts/check_links.py --unlink-missing COPY N PROJECT   # (exercise.sh) copy of lab N
 
 Looks at every *.md file under DIR (not .git/, build*/, node_modules/, student/, out/): each
 inline link or picture [text](target) / ![alt](target) outside code that is not an URL
@@ -12,6 +13,11 @@ the heading's text without its markup, lower-case, punctuation and symbols dropp
 turned into -, and -1, -2, … appended to repeats.
 Prints one line per broken link (file:line: the target and why) and exits 1 if there is one,
 0 if none; 2 on bad input.
+
+--unlink-missing (exercise.sh runs it on the copy it writes): each link or picture whose file is
+in PROJECT but not in the copy becomes plain text, marked "(a later lab, not in this copy)" when the path is named
+after a lab later than N (the rule of exercise.sh --left-out), else "(instructors' material, not
+in this copy)" (docs/diffs/, site/, docs/solutions/).
 """
 import os
 import re
@@ -93,38 +99,100 @@ def markdown_files(top):
                 yield os.path.join(here, name)
 
 
+def broken(md, target, top):
+    """Why the link target (as written in Markdown file md) does not resolve; None if it does."""
+    if not target or re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*:", target):
+        return None  # an URL: not checked offline
+    file_part, _, anchor = target.partition("#")
+    dest = md if not file_part else os.path.normpath(
+        os.path.join(os.path.dirname(md), unquote(file_part)))
+    if not os.path.exists(dest):
+        return "no such file or folder"
+    if os.path.relpath(dest, top).startswith(".."):
+        return "outside the tree"
+    if anchor:
+        if not dest.endswith(".md") or os.path.isdir(dest):
+            return "an anchor into a file that is not Markdown"
+        if unquote(anchor) not in anchors(dest):
+            return f"no heading with the anchor #{anchor} in {os.path.relpath(dest, top)}"
+    return None
+
+
+def links(line):
+    """The links of a line outside code spans: (match, target)."""
+    blanked = CODE_SPAN.sub(lambda m: " " * len(m.group(0)), line)
+    return [(m, m.group(1)) for m in LINK.finditer(blanked)]
+
+
 def check(top):
     problems = 0
     for md in markdown_files(top):
         shown = os.path.relpath(md, top)
         for number, line in lines_outside_code(md):
-            line = CODE_SPAN.sub(lambda m: " " * len(m.group(0)), line)
-            for m in LINK.finditer(line):
-                target = m.group(1)
-                if not target or re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*:", target):
-                    continue  # an URL: not checked offline
-                file_part, _, anchor = target.partition("#")
-                dest = md if not file_part else os.path.normpath(
-                    os.path.join(os.path.dirname(md), unquote(file_part)))
-                why = None
-                if not os.path.exists(dest):
-                    why = "no such file or folder"
-                elif os.path.relpath(dest, top).startswith(".."):
-                    why = "outside the tree"
-                elif anchor:
-                    if not dest.endswith(".md") or os.path.isdir(dest):
-                        why = "an anchor into a file that is not Markdown"
-                    elif unquote(anchor) not in anchors(dest):
-                        why = f"no heading with the anchor #{anchor} in {os.path.relpath(dest, top)}"
+            for _, target in links(line):
+                why = broken(md, target, top)
                 if why:
                     print(f"{shown}:{number}: broken link ({target}): {why}")
                     problems += 1
     return problems
 
 
+def later_lab(path, n):
+    """Is path named after a lab later than n (lab<K>_… or …_lab<K>_…, K > n)? The rule of
+    exercise.sh's later_lab_names."""
+    return any(int(k) > n for part in path.split("/")
+               for k in re.findall(r"(?:^|_|-)lab([0-9]+)_", part))
+
+
+def unlink_missing(top, n, source):
+    """In a student copy of lab n: each link or picture to a path the copy left out (there in the
+    project source, not in the copy) becomes plain text, marked as a later lab's or as instructors'
+    material. A link that is broken in the project too stays, for the check to report."""
+    changed = 0
+    for md in markdown_files(top):
+        with open(md, encoding="utf-8") as f:
+            lines = f.read().split("\n")
+        code = {number - 1 for number in range(1, len(lines) + 1)}
+        code -= {number - 1 for number, _ in lines_outside_code(md)}
+        for i, line in enumerate(lines):
+            if i in code:
+                continue
+            for m, target in reversed(links(line)):
+                file_part = target.partition("#")[0]
+                if not file_part or re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*:", target):
+                    continue
+                dest = os.path.normpath(os.path.join(os.path.dirname(md), unquote(file_part)))
+                where = os.path.relpath(dest, top)
+                if os.path.exists(dest) or not os.path.exists(os.path.join(source, where)):
+                    continue
+                mark = ("a later lab, not in this copy" if later_lab(where, n)
+                        else "instructors' material, not in this copy")
+                text = re.match(r"!?\[(.*)\]\(", m.group(0), re.S).group(1)
+                if m.group(0).startswith("!"):
+                    plain = f"*(picture: {text or where}; {mark})*"
+                else:
+                    plain = f"{text} *({mark})*"
+                line = line[:m.start()] + plain + line[m.end():]
+                changed += 1
+            lines[i] = line
+        with open(md, "w", encoding="utf-8") as f:
+            f.write("\n".join(lines))
+        _anchor_cache.pop(md, None)
+    return changed
+
+
 def main(argv):
     if len(argv) > 1 and argv[1] in ("-h", "--help"):
         print(__doc__.strip())
+        return 0
+    if len(argv) > 1 and argv[1] == "--unlink-missing":
+        if (len(argv) != 5 or not argv[3].isdigit() or not os.path.isdir(argv[2])
+                or not os.path.isdir(argv[4])):
+            print("check_links: usage: check_links.py --unlink-missing COPY_DIR LAB_NUMBER PROJECT_DIR",
+                  file=sys.stderr)
+            return 2
+        changed = unlink_missing(argv[2], int(argv[3]), argv[4])
+        print(f"check_links: {argv[2]}: {changed} link(s) to left-out paths made plain text")
         return 0
     if len(argv) > 2:
         print("check_links: usage: check_links.py [DIR]", file=sys.stderr)

@@ -8,6 +8,8 @@
 #   bash scripts/exercise.sh --check-copy DIR LAB       # check a written copy for answers
 #   bash scripts/exercise.sh --check-copies             # write and check a copy of every lab with
 #                                                       # exercises (CTest: student_copy_no_answers)
+#   bash scripts/exercise.sh --check-copy-links         # write a copy of every lab; every link in
+#                                                       # it resolves (CTest: student_copy_links)
 #   bash scripts/exercise.sh --prove BUILD_DIR LAB      # the grader's own test (CTest: grader_labN)
 #   bash scripts/exercise.sh --solution-lines LAB       # the substantive solution lines of LAB's and
 #                                                       # every later lab's exercises (name US where US code)
@@ -359,6 +361,25 @@ check_copies() {
   exit "$failed"
 }
 
+# --check-copy-links (CTest: student_copy_links): writes a copy of every lab and checks that every
+# relative link and #anchor of its Markdown files resolves (scripts/check_links.py): the copy
+# leaves docs/diffs/ and the later labs out, and its links to them must have become plain text.
+check_copy_links() {
+  local tmp l failed=0
+  if [ -f .student-copy ]; then
+    echo "exercise: this is a student copy ($(head -n 1 .student-copy)): copies are written from the complete project (skipped)"
+    exit 77
+  fi
+  tmp=$(mktemp -d)
+  trap 'rm -rf "$tmp"' EXIT
+  for l in "${labs[@]}"; do
+    [ -n "$(exercises_of "$l")" ] || continue
+    bash "$root/scripts/exercise.sh" "$l" --out "$tmp/$l" >/dev/null || { echo "FAIL exercise.sh $l did not write a copy"; failed=1; continue; }
+    python3 "$root/scripts/check_links.py" "$tmp/$l" | sed "s|^|$l copy: |" || failed=1
+  done
+  exit "$failed"
+}
+
 # --prove BUILD LAB (the CTest test grader_labN): the grader really grades. With the complete lab
 # every test an exercise names passes; with each exercise alone cut out, at least one of them
 # fails and its output names the exercise. Reuses BUILD (see the end of tests/CMakeLists.txt).
@@ -504,13 +525,17 @@ case "${1:-}" in
     [ $# -eq 1 ] || die "usage: exercise.sh --check-copies"
     check_copies
     ;;
+  --check-copy-links)
+    [ $# -eq 1 ] || die "usage: exercise.sh --check-copy-links"
+    check_copy_links
+    ;;
   --prove)
     [ $# -eq 3 ] || die "usage: exercise.sh --prove BUILD_DIR LAB"
     prove "$2" "$(resolve_lab "$3")"
     exit 0
     ;;
   "" | -h | --help)
-    sed -n '2,44p' "$0" | sed 's/^# \{0,1\}//'
+    awk 'NR > 1 && !/^#/ { exit } NR > 1' "$0" | sed 's/^# \{0,1\}//'  # the header comment
     exit 0
     ;;
   --list)
@@ -567,6 +592,9 @@ mkdir -p "$out"
 tar -C "$root" --exclude='./build*' --exclude=./out --exclude=./student --exclude=./.git -cf - . | tar -C "$out" -xf -
 mapfile -t gone < <(left_out "$(lab_number "$lab")")
 for p in "${gone[@]}"; do rm -rf "${out:?}/$p"; done
+# Links to what was left out become plain text, marked as a later lab's or instructors' material,
+# so every link of the copy works (--check-copy-links).
+python3 "$root/scripts/check_links.py" --unlink-missing "$out" "$(lab_number "$lab")" "$root" >/dev/null
 # Marks the copy (tests/CMakeLists.txt: the tests of the whole project are disabled there).
 printf '%s\n%s\n' "$lab" "${names[*]}" >"$out/.student-copy"
 
