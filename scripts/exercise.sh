@@ -13,6 +13,8 @@
 #   bash scripts/exercise.sh --prove BUILD_DIR LAB      # the grader's own test (CTest: grader_labN)
 #   bash scripts/exercise.sh --solution-lines LAB       # the substantive solution lines of LAB's and
 #                                                       # every later lab's exercises (name US where US code)
+#   bash scripts/exercise.sh --solution-code LAB        # their code as written, stubs too (for
+#                                                       # scripts/comment_answers.py)
 #
 # LAB is 1, lab1 or lab1_camera. Without NAMEs every exercise of the lab is cut out.
 #
@@ -263,6 +265,24 @@ solution_lines() {
     !($3 in boilerplate)' <(boilerplate_lines) -
 }
 
+# The code of the exercises of lab $1 (a folder) and of every later lab, as written:
+# name US solution|stub US file:line US the line (stub lines without "// STUB: "). For
+# scripts/comment_answers.py, which derives each solution's distinctive tokens from it.
+solution_code() {
+  local lab="$1" l from=0 name file line hint tests
+  for l in "${labs[@]}"; do
+    [ "$l" = "$lab" ] && from=1
+    ((from)) || continue
+    exercises_of "$l" | while IFS=$'\037' read -r name file line hint tests; do
+      awk -v name="$name" -v first="$line" '
+        FNR <= first { next }
+        /^[ \t]*\/\/ END EXERCISE[ \t]*$/ { exit }
+        /^[ \t]*\/\/ STUB: / { s = $0; sub(/^[ \t]*\/\/ STUB: /, "", s); printf "%s\037stub\037%s:%d\037%s\n", name, FILENAME, FNR, s; next }
+        { printf "%s\037solution\037%s:%d\037%s\n", name, FILENAME, FNR, $0 }' "$file"
+    done
+  done
+}
+
 # Every line of the project's own code outside the exercises, without whitespace or trailing //
 # comments: common/ and the labs' folders and shader folders with every exercise cut (marker to
 # END EXERCISE, the STUB lines included).
@@ -282,7 +302,10 @@ boilerplate_lines() {
 #   (b) every exercise of the lab is cut out: its file has the "// TODO EXERCISE name:" line;
 #   (c) no text file holds a solution line (solution_lines) of the lab's or a later lab's
 #       exercises, compared without whitespace, as part of any line: a doc that quotes the answer,
-#       a later lab's file, a diff, a bench script with a shader in it all count.
+#       a later lab's file, a diff, a bench script with a shader in it all count;
+#   (d) no comment and no Markdown text names a solution's distinctive token (an enum such as
+#       VK_COMPARE_OP_LESS_OR_EQUAL, a call expression such as max(a.x,max(a.y,a.z))) that the
+#       copy's code does not hold anyway (scripts/comment_answers.py).
 # Prints one line per problem; exit 1 if there is one.
 check_copy() {
   local dir="$1" lab="$2" n problems=0 p name file line hint tests
@@ -334,6 +357,11 @@ check_copy() {
   done <<<"$hits"
   ((reported > 20)) && echo "… and $((reported - 20)) more"
   problems=$((problems + reported))
+  local comments
+  comments=$(solution_code "$lab" | python3 "$root/scripts/comment_answers.py" "$dir") || true
+  echo "$comments" | grep -v '^FAIL' || true
+  problems=$((problems + $(echo "$comments" | grep -c '^FAIL' || true)))
+  echo "$comments" | grep '^FAIL' | head -n 20 || true
   if ((problems)); then
     echo "check-copy: $dir: $problems problem(s) (a copy of $lab must hold none of its answers)"
     return 1
@@ -380,9 +408,13 @@ check_copy_links() {
   exit "$failed"
 }
 
-# --prove BUILD LAB (the CTest test grader_labN): the grader really grades. With the complete lab
-# every test an exercise names passes; with each exercise alone cut out, at least one of them
-# fails and its output names the exercise. Reuses BUILD (see the end of tests/CMakeLists.txt).
+# --prove BUILD LAB (the CTest test grader_labN): the grader really grades, and names the real
+# cause. With the complete lab every test an exercise names ("Checked by") passes. Then, for each
+# exercise e, one of its tests must show isolation:
+#   (a) with only e stubbed (the others solved) it fails, and its message names e first;
+#   (b) with only e solved (every other exercise of the lab stubbed, but the prerequisites that
+#       tests/graded_exercises.txt gives e's own code: "@e x y") it passes.
+# Prints, per exercise, the test that showed it. Reuses BUILD (see the end of tests/CMakeLists.txt).
 prove() {
   local build="$1" lab="$2"
   local g="$build/grader"
@@ -407,16 +439,17 @@ prove() {
   IFS=';' read -r -a graded_bins <<<"$GRADED_BINARIES"
   local -a variants=()
   IFS=';' read -r -a variants <<<"${SHADER_VARIANTS:-}"
-  local f failures=0
+  local failures=0 names=()
+  local entry name file line hint tests
+  for entry in "${all[@]}"; do names+=("${entry%%$'\037'*}"); done
 
-  # The lab's files in $g/src, written only where they differ (make rebuilds only what changed).
-  mirror() {  # [file name…]: that file with those exercises stubbed
-    local stubbed_file="${1:-}"
-    shift || true
+  # The lab's files in $g/src with the exercises NAMEs stubbed, written only where they differ
+  # (make rebuilds only what changed).
+  mirror() {  # [name…]
     local f
     for f in $( { find "$lab" -type f; find "shaders/$lab" -type f 2>/dev/null; } | sort); do
       mkdir -p "$g/src/$(dirname "$f")"
-      if [ "$f" = "$stubbed_file" ]; then
+      if (($#)) && grep -q "// EXERCISE " "$f"; then
         stub_file "$f" "$@" >"$g/tmp"
       else
         cp "$f" "$g/tmp"
@@ -442,64 +475,103 @@ prove() {
     "$CMAKE" --build "$build" --target "${graded_targets[@]}" -j2 >>"$log" 2>&1 ||
       { echo "grader: building ${graded_targets[*]} failed (see $log)"; return 1; }
   }
-  # Runs the tests matching $1 (gtest patterns, space-separated) in every test binary of the lab;
-  # sets ran / failed and leaves the output in $g/out.
+  # Runs the tests matching $1 (gtest patterns, space-separated) in every test binary of the lab
+  # (the hints read the mirror: LAB_EXERCISE_SOURCES); the output goes to $g/out.
   run_tests() {
     local filter="${1// /:}" out_dir="$g/test_output/$2" bin
     : >"$g/out"
-    ran=0 failed=0
     for bin in "${runners[@]}" "${graded_bins[@]}"; do
       [ -n "$bin" ] || continue
       if LAB_EXE_DIR="$LAB_EXE_DIR" LAB_SHADER_DIR="$g/shaders/$lab" LAB_TEST_OUTPUT="$out_dir" \
-           "$bin" --gtest_filter="$filter" >"$g/one" 2>&1; then :; fi
+           LAB_EXERCISE_SOURCES="$g/src" "$bin" --gtest_filter="$filter" >"$g/one" 2>&1; then :; fi
       cat "$g/one" >>"$g/out"
-      ran=$((ran + $(sed -nE 's/^\[==========\] ([0-9]+) tests? from .* ran\..*/\1/p' "$g/one" | head -n 1 | grep . || echo 0)))
-      failed=$((failed + $(sed -nE 's/^\[  FAILED  \] ([0-9]+) tests?, listed below:.*/\1/p' "$g/one" | head -n 1 | grep . || echo 0)))
     done
   }
+  # Each test of the last run: "name ok|failed exercise-its-message-names-first" ($g/out).
+  results() {
+    awk '
+      /^\[ RUN      \] / { cur = $4 }
+      /^\[       OK \] / && NF >= 4 { state[$4] = "ok"; order[++n] = $4 }
+      /^\[  FAILED  \] [^ ]+ \(/ { state[$4] = "failed"; order[++n] = $4 }
+      /^\[ exercise \] this test needs `/ && cur != "" && !(cur in named) {
+        s = $0; sub(/^[^`]*`/, "", s); sub(/`.*/, "", s); named[cur] = s
+      }
+      END { for (i = 1; i <= n; i++) print order[i], state[order[i]], (order[i] in named ? named[order[i]] : "-") }
+    ' "$g/out"
+  }
+  # The prerequisites tests/graded_exercises.txt gives exercise $1's own code ("@name x y").
+  prerequisites() { awk -v e="@$1" '{ sub(/#.*/, "") } $1 == e { for (i = 2; i <= NF; i++) print $i }' tests/graded_exercises.txt 2>/dev/null; }
 
   echo "grader: $lab, ${#all[@]} exercises; building the graded copy in $g"
   mirror
   compile || exit 1
-  local entry name file line hint tests
+  local -A stubbed_fails=() pattern_of=()
   for entry in "${all[@]}"; do
     IFS=$'\037' read -r name file line hint tests <<<"$entry"
+    pattern_of[$name]="$tests"
     if [ -z "$tests" ]; then
       echo "FAIL $name ($file:$line): its marker names no test (\"Checked by Suite.Test.\")"
       failures=$((failures + 1))
       continue
     fi
     run_tests "$tests" "complete"
-    if ((ran == 0 || failed > 0)); then
-      echo "FAIL $name: with the complete lab, $failed of $ran tests named by the exercise ($tests) fail"
-      grep -E '^\[  FAILED  \]' "$g/out" | head -n 5
+    local ran bad
+    ran=$(results | wc -l)
+    bad=$(results | awk '$2 != "ok" { print $1 }' | head -n 5 | tr '\n' ' ')
+    if ((ran == 0)) || [ -n "$bad" ]; then
+      echo "FAIL $name: with the complete lab, tests named by the exercise fail or none ran ($tests): $bad"
       failures=$((failures + 1))
     else
       echo "ok   $name: complete lab passes all $ran tests ($tests)"
     fi
   done
-  for entry in "${all[@]}"; do
-    IFS=$'\037' read -r name file line hint tests <<<"$entry"
-    [ -n "$tests" ] || continue
-    mirror "$file" "$name"
+  # (a) only e stubbed: the tests that fail and name e.
+  for name in "${names[@]}"; do
+    [ -n "${pattern_of[$name]}" ] || continue
+    mirror "$name"
     compile || { failures=$((failures + 1)); continue; }
-    run_tests "$tests" "$name"
-    if ((failed == 0)); then
-      echo "FAIL $name ($file:$line): with it stubbed all $ran tests ($tests) still pass: no test grades it"
+    run_tests "${pattern_of[$name]}" "$name"
+    stubbed_fails[$name]=$(results | awk -v e="$name" '$2 == "failed" && $3 == e { print $1 }' | tr '\n' ' ')
+    if [ -z "${stubbed_fails[$name]}" ]; then
+      echo "FAIL $name: stubbed alone, no test it names fails naming it first:"
+      results | sed 's/^/       /' | head -n 8
       failures=$((failures + 1))
-    elif ! grep -q "grades exercise \`$name\`" "$g/out"; then
-      echo "FAIL $name: $failed of $ran tests fail, but none names the exercise"
+    fi
+  done
+  # (b) only e (and its code's prerequisites) solved: one of the tests of (a) passes.
+  local -a table=() others
+  local t iso pre
+  for name in "${names[@]}"; do
+    [ -n "${stubbed_fails[$name]:-}" ] || continue
+    pre=$(prerequisites "$name" | tr '\n' ' ')
+    pre="${pre% }"
+    others=()
+    for t in "${names[@]}"; do
+      [[ "$t" == "$name" || " $pre " == *" $t "* ]] || others+=("$t")
+    done
+    mirror "${others[@]}"
+    compile || { failures=$((failures + 1)); continue; }
+    run_tests "${stubbed_fails[$name]}" "only-$name"
+    iso=$(results | awk '$2 == "ok" { print $1 }' | head -n 1)
+    if [ -z "$iso" ]; then
+      echo "FAIL $name: solved with every other exercise of $lab stubbed${pre:+ but $pre}, none of ${stubbed_fails[$name]}passes:"
+      results | sed 's/^/       /' | head -n 8
       failures=$((failures + 1))
     else
-      echo "ok   $name: stubbed, $failed of $ran tests fail and name it ($(grep -E '^\[  FAILED  \] [A-Za-z]' "$g/out" | sed -E 's/^\[  FAILED  \] ([^ ]+).*/\1/' | sort -u | head -n 3 | tr '\n' ' '))"
+      table+=("$(printf '%-18s %s%s' "$name" "$iso" "${pre:+ (with the prerequisites of its code solved: $pre)}")")
     fi
   done
   mirror  # back to the complete lab
+  compile >/dev/null || true
+  if ((${#table[@]})); then
+    echo "isolation (exercise → a test that fails with only it stubbed, naming it, and passes with only it solved):"
+    printf '  %s\n' "${table[@]}"
+  fi
   if ((failures)); then
     echo "grader: $failures problem(s); build log: $log"
     exit 1
   fi
-  echo "grader: every exercise of $lab is graded by a test that can fail"
+  echo "grader: every exercise of $lab is graded by a test that isolates it"
 }
 
 case "${1:-}" in
@@ -514,6 +586,12 @@ case "${1:-}" in
     lab=$(resolve_lab "$3")
     check_copy "$2" "$lab"
     exit $?
+    ;;
+  --solution-code)
+    [ $# -eq 2 ] || die "usage: exercise.sh --solution-code LAB"
+    lab=$(resolve_lab "$2")
+    solution_code "$lab"
+    exit 0
     ;;
   --solution-lines)
     [ $# -eq 2 ] || die "usage: exercise.sh --solution-lines LAB"
@@ -610,6 +688,20 @@ for file in "${!done_files[@]}"; do
   # shellcheck disable=SC2086
   stub_file "$file" ${done_files[$file]} >"$out/$file"
 done
+# .exercise-stubs: each cut-out exercise's stub, "file name stub-line", so that the grader
+# (tests/exercise_hints.cpp) sees an exercise as done once its code differs from the stub, whether
+# or not the student keeps the TODO marker line.
+{
+  echo "# written by scripts/exercise.sh: the stubs of this copy's exercises (tests/exercise_hints.cpp)"
+  for file in $(printf '%s\n' "${!done_files[@]}" | sort); do
+    # shellcheck disable=SC2086
+    awk -v names=" ${done_files[$file]} " -v file="$file" '
+      match($0, /\/\/ EXERCISE [a-z0-9_]+: /) { name = substr($0, RSTART + 12, RLENGTH - 14); inside = index(names, " " name " ") > 0; next }
+      inside && /^[ \t]*\/\/ END EXERCISE/ { inside = 0; next }
+      inside && /^[ \t]*\/\/ STUB: / { s = $0; sub(/^[ \t]*\/\/ STUB: /, "", s); print file, name, s }
+      inside && /^[ \t]*\/\/ STUB:$/ { print file, name }' "$file"
+  done
+} >"$out/.exercise-stubs"
 short="${lab%%_*}"
 earlier=""
 for l in "${labs[@]}"; do [ "$l" = "$lab" ] && break; earlier+="${earlier:+, }$l"; done
@@ -622,6 +714,7 @@ Check it: bash scripts/exercise.sh --check-copy $out $short
 Build and grade it:
   cd $out && bash scripts/setup.sh
   ctest --test-dir build -L $short --output-on-failure     # the grader: green when every exercise is done
-Each failing test names its exercise; build/test_output/ has the pictures (actual | expected | difference).
+Each failing test names the first unfinished exercise it needs; build/test_output/ has the pictures
+(expected | actual | difference, left to right).
 EOF
 

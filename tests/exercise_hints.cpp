@@ -1,19 +1,32 @@
-// exercise_hints.cpp — linked into every test binary: when a test fails, it names the exercises
-// it grades (scripts/exercise.sh), where they are, and whether they are still stubs.
+// exercise_hints.cpp — linked into every test binary: when a test fails, it names the first
+// unfinished exercise (scripts/exercise.sh) that the test needs, where it is and its hint.
 //
 // The labs mark an exercise's code with "// EXERCISE name: hint. Checked by Suite.Test, Suite.*."
-// (a student copy has "// TODO EXERCISE ..." there). A failing test whose name matches one of the
-// "Checked by" patterns prints, for example:
-//     [ exercise ] this test grades exercise `attenuation`: shaders/lab2_lighting/lighting.glsl:97,
-//                  still the stub (TODO). Hint: what fraction of a light's radiance is left ...
+// (a student copy has "// TODO EXERCISE ..." and the stub there) up to "// END EXERCISE". What a
+// test needs is the exercises whose "Checked by" names it plus its rows in
+// tests/graded_exercises.txt. A failing test prints, for example:
+//     [ exercise ] this test needs `texel_format`, still the stub: lab3_textures/texture.cpp:28
+//                  Hint: which VkFormat does a colour map ...
+//     [ exercise ] it also grades `mip_chain` (lab3_textures/texture.cpp:154): finish `texel_format` first
+// or, when every exercise it needs is done:
+//     [ exercise ] every exercise this test needs is done (texel_format, mip_chain): compare your
+//                  `mip_chain` with the hint: lab3_textures/texture.cpp:154 ...
+//
+// "Done" does not depend on the marker line: an exercise is unfinished while its code (between
+// the marker and END EXERCISE, without whitespace and // comments) is still the stub. The stub's
+// text comes from the complete lab's "// STUB:" lines, or in a student copy from the
+// .exercise-stubs file that scripts/exercise.sh writes there.
 #include <gtest/gtest.h>
 
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,13 +38,29 @@ namespace fs = std::filesystem;
 struct Marker {
     std::string name, file, hint;
     int line = 0;
-    bool stub = false;  // "// TODO EXERCISE": the student copy, not done yet
-    std::vector<std::string> tests;
+    int lab = 0;          // N of the lab folder lab<N>_* the file is in
+    std::string code;     // the code between the marker and END EXERCISE, normalized (see bare())
+    std::string stub;     // the complete lab's STUB lines, normalized; empty: not a complete marker
+    bool todo = false;    // the marker reads "// TODO EXERCISE"
+    bool unfinished = false;
+    std::vector<std::string> tests;  // "Checked by" patterns
 };
 
-// Every marker in the lab folders (lab<N>_*/) and their shader folders, labs in order.
-std::vector<Marker> scan_markers(const fs::path& root) {
-    std::vector<fs::path> files;
+// A line without its // comment and without any whitespace: what a stub is compared by.
+std::string bare(std::string s) {
+    const size_t comment = s.find("//");
+    if (comment != std::string::npos) s.erase(comment);
+    s.erase(std::remove_if(s.begin(), s.end(), [](unsigned char c) { return std::isspace(c); }), s.end());
+    return s;
+}
+
+int lab_number(const std::string& folder) {  // "lab3_textures" → 3
+    return std::atoi(folder.c_str() + 3);
+}
+
+// The lab folders (lab<N>_*/ and shaders/lab<N>_*/) of root: their files, relative to root.
+std::vector<std::string> lab_files(const fs::path& root) {
+    std::vector<std::string> files;
     std::error_code ec;
     for (const fs::path& top : {root, root / "shaders"}) {
         if (!fs::is_directory(top, ec)) continue;
@@ -39,76 +68,200 @@ std::vector<Marker> scan_markers(const fs::path& root) {
             const std::string name = lab.path().filename().string();
             if (!lab.is_directory() || name.rfind("lab", 0) != 0) continue;
             for (const auto& f : fs::recursive_directory_iterator(lab.path(), ec))
-                if (f.is_regular_file() && f.path().extension() != ".md") files.push_back(f.path());
+                if (f.is_regular_file() && f.path().extension() != ".md")
+                    files.push_back(fs::relative(f.path(), root).generic_string());
         }
     }
+    return files;
+}
+
+// Every marker of one file ("// [TODO ]EXERCISE name: hint[ Checked by A.B, C.*.]").
+void scan_file(const fs::path& path, const std::string& rel, std::vector<Marker>& out) {
+    const std::string folder = rel.rfind("shaders/", 0) == 0 ? rel.substr(8) : rel;
+    const int lab = lab_number(folder);
+    std::ifstream in(path);
+    std::string text;
+    Marker* open = nullptr;
+    for (int line = 1; std::getline(in, text); ++line) {
+        if (open) {
+            const std::string trimmed = bare(text);
+            if (text.find("// END EXERCISE") != std::string::npos && trimmed.empty()) {
+                open = nullptr;
+            } else if (const size_t s = text.find("// STUB: "); s != std::string::npos && trimmed.empty()) {
+                open->stub += bare(text.substr(s + 9));
+            } else {
+                open->code += trimmed;
+            }
+            continue;
+        }
+        size_t at = text.find("// EXERCISE ");
+        bool todo = false;
+        if (at == std::string::npos) {
+            at = text.find("// TODO EXERCISE ");
+            if (at == std::string::npos) continue;
+            todo = true;
+        }
+        const size_t name_at = text.find("EXERCISE ", at) + 9;
+        const size_t colon = text.find(": ", name_at);
+        if (colon == std::string::npos) continue;
+        const std::string name = text.substr(name_at, colon - name_at);
+        if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
+            continue;
+        std::string hint = text.substr(colon + 2), tests;
+        const size_t checked = hint.find(" Checked by ");
+        if (checked != std::string::npos) {
+            tests = hint.substr(checked + 12);
+            hint.erase(checked);
+            if (!tests.empty() && tests.back() == '.') tests.pop_back();
+        }
+        Marker mk;
+        mk.name = name, mk.file = rel, mk.hint = hint, mk.line = line, mk.lab = lab, mk.todo = todo;
+        std::replace(tests.begin(), tests.end(), ',', ' ');
+        std::istringstream words(tests);
+        for (std::string t; words >> t;) mk.tests.push_back(t);
+        out.push_back(mk);
+        open = &out.back();
+    }
+}
+
+// The stubs a student copy was written with: .exercise-stubs, "file name stub-line" per line.
+std::map<std::string, std::string> copy_stubs(const fs::path& root) {
+    std::map<std::string, std::string> stubs;  // "file name" → normalized stub
+    std::ifstream in(root / ".exercise-stubs");
+    std::string file, name, rest;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream words(line);
+        if (!(words >> file >> name)) continue;
+        std::getline(words, rest);
+        stubs[file + " " + name] += bare(rest);
+    }
+    return stubs;
+}
+
+// Every marker of the project at LAB_SOURCE_DIR, in the labs' order and, within a lab, in the
+// order of `exercise.sh --list` (path, then line). The prover (exercise.sh --prove) builds the
+// tests from a mirror of one lab with exercises stubbed: LAB_EXERCISE_SOURCES names it, and its
+// lab folders are read instead of the project's.
+std::vector<Marker> scan_markers() {
+    const fs::path root = LAB_SOURCE_DIR;
+    std::vector<Marker> complete;
+    std::vector<std::string> files = lab_files(root);
     std::sort(files.begin(), files.end());
-    std::vector<Marker> markers;
-    for (const fs::path& file : files) {
-        std::ifstream in(file);
-        std::string text;
-        for (int line = 1; std::getline(in, text); ++line) {
-            // "// [TODO ]EXERCISE name: hint[ Checked by A.B, C.*.]"
-            size_t at = text.find("// EXERCISE ");
-            bool stub = false;
-            if (at == std::string::npos) {
-                at = text.find("// TODO EXERCISE ");
-                if (at == std::string::npos) continue;
-                stub = true;
-            }
-            const size_t name_at = text.find("EXERCISE ", at) + 9;
-            const size_t colon = text.find(": ", name_at);
-            if (colon == std::string::npos) continue;
-            const std::string name = text.substr(name_at, colon - name_at);
-            if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
-                continue;
-            std::string hint = text.substr(colon + 2), tests;
-            const size_t checked = hint.find(" Checked by ");
-            if (checked != std::string::npos) {
-                tests = hint.substr(checked + 12);
-                hint.erase(checked);
-                if (!tests.empty() && tests.back() == '.') tests.pop_back();
-            }
-            Marker mk{name, fs::relative(file, root).string(), hint, line, stub, {}};
-            std::replace(tests.begin(), tests.end(), ',', ' ');
-            std::istringstream words(tests);
-            for (std::string t; words >> t;) mk.tests.push_back(t);
-            markers.push_back(mk);
+    for (const std::string& f : files) scan_file(root / f, f, complete);
+
+    std::vector<Marker> markers = complete;
+    const char* mirror = std::getenv("LAB_EXERCISE_SOURCES");
+    if (mirror && *mirror) {
+        std::vector<std::string> mirrored = lab_files(mirror);
+        std::vector<std::string> labs;  // the lab folders the mirror replaces
+        for (const std::string& f : mirrored) {
+            const std::string folder = f.rfind("shaders/", 0) == 0 ? f.substr(8) : f;
+            labs.push_back(folder.substr(0, folder.find('/')));
         }
+        std::vector<std::string> kept;
+        for (const std::string& f : files) {
+            const std::string folder = f.rfind("shaders/", 0) == 0 ? f.substr(8) : f;
+            if (std::find(labs.begin(), labs.end(), folder.substr(0, folder.find('/'))) == labs.end())
+                kept.push_back(f);
+        }
+        markers.clear();
+        for (const std::string& f : kept) scan_file(root / f, f, markers);
+        for (const std::string& f : mirrored) scan_file(fs::path(mirror) / f, f, markers);
     }
+    const std::map<std::string, std::string> stubs = copy_stubs(root);
+    for (Marker& m : markers) {
+        // The stub this marker's code is compared with: its own STUB lines (the complete lab), the
+        // complete project's for the same file (the prover's mirror), or the copy's manifest.
+        std::string stub = m.stub;
+        bool known = !m.stub.empty() || !m.todo;
+        for (const Marker& c : complete)
+            if (!known && c.file == m.file && c.name == m.name && !c.todo) stub = c.stub, known = true;
+        if (const auto s = stubs.find(m.file + " " + m.name); !known && s != stubs.end()) stub = s->second, known = true;
+        // A complete marker without STUB lines has no stub to be; a TODO marker whose stub is
+        // unknown (a copy written before .exercise-stubs) is taken at its word.
+        m.unfinished = known ? (m.todo || !m.stub.empty()) && m.code == stub : m.todo;
+    }
+    std::stable_sort(markers.begin(), markers.end(), [](const Marker& a, const Marker& b) {
+        if (a.lab != b.lab) return a.lab < b.lab;
+        const std::string fa = a.file.rfind("shaders/", 0) == 0 ? a.file.substr(8) : a.file;
+        const std::string fb = b.file.rfind("shaders/", 0) == 0 ? b.file.substr(8) : b.file;
+        const bool sa = fa != a.file, sb = fb != b.file;  // a lab's folder before its shaders
+        if (sa != sb) return sb;
+        return a.file != b.file ? a.file < b.file : a.line < b.line;
+    });
     return markers;
+}
+
+// tests/graded_exercises.txt: "pattern exercise…" rows; a test needs every row it matches.
+std::vector<std::pair<std::string, std::vector<std::string>>> needs_table() {
+    std::vector<std::pair<std::string, std::vector<std::string>>> rows;
+    std::ifstream in(fs::path(LAB_SOURCE_DIR) / "tests" / "graded_exercises.txt");
+    for (std::string line; std::getline(in, line);) {
+        line.erase(std::min(line.size(), line.find('#')));
+        std::istringstream words(line);
+        std::string pattern;
+        if (!(words >> pattern)) continue;
+        std::vector<std::string> names;
+        for (std::string n; words >> n;) names.push_back(n);
+        rows.emplace_back(pattern, names);
+    }
+    return rows;
+}
+
+bool matches(const std::string& pattern, const std::string& test) {
+    return fnmatch(pattern.c_str(), test.c_str(), 0) == 0;
 }
 
 class ExerciseHints : public ::testing::EmptyTestEventListener {
     void OnTestEnd(const ::testing::TestInfo& info) override {
         if (!info.result()->Failed()) return;
-        static const std::vector<Marker> markers = scan_markers(LAB_SOURCE_DIR);
+        static const std::vector<Marker> markers = scan_markers();
+        static const auto table = needs_table();
         const std::string full = std::string(info.test_suite_name()) + "." + info.name();
-        // One line per exercise: a stub (TODO) wins over a finished copy of the same exercise.
-        std::vector<const Marker*> hits;
+
+        std::vector<std::string> graded, needed;
+        for (const Marker& m : markers)
+            if (std::any_of(m.tests.begin(), m.tests.end(), [&](const std::string& p) { return matches(p, full); }))
+                graded.push_back(m.name);
+        needed = graded;
+        for (const auto& [pattern, names] : table)
+            if (matches(pattern, full)) needed.insert(needed.end(), names.begin(), names.end());
+        if (needed.empty()) return;  // a test of no exercise: nothing to say about them
+
+        // The exercises it needs in the labs' order, each once: an unfinished copy of an exercise
+        // (a lab carries an earlier lab's files) stands for it, else its first lab's; the order is
+        // that of the exercise's own (first) lab.
+        std::vector<const Marker*> order;
         for (const Marker& m : markers) {
-            const bool matches = std::any_of(m.tests.begin(), m.tests.end(), [&](const std::string& pattern) {
-                return fnmatch(pattern.c_str(), full.c_str(), 0) == 0;
-            });
-            if (!matches) continue;
-            auto same = std::find_if(hits.begin(), hits.end(), [&](const Marker* h) { return h->name == m.name; });
-            if (same == hits.end()) hits.push_back(&m);
-            else if (m.stub && !(*same)->stub) *same = &m;
+            if (std::find(needed.begin(), needed.end(), m.name) == needed.end()) continue;
+            auto same = std::find_if(order.begin(), order.end(), [&](const Marker* o) { return o->name == m.name; });
+            if (same == order.end()) order.push_back(&m);
+            else if (m.unfinished && !(*same)->unfinished) *same = &m;
         }
-        for (const Marker* m : hits)
-            std::printf("[ exercise ] this test grades exercise `%s`: %s:%d, %s. Hint: %s\n", m->name.c_str(),
-                        m->file.c_str(), m->line, m->stub ? "still the stub (TODO)" : "compare with the lab's code",
-                        m->hint.c_str());
-        if (hits.empty()) {
-            // Not named by any exercise, but a student copy may still have stubs that it depends on.
-            for (const Marker& m : markers)
-                if (m.stub) hits.push_back(&m);
-            for (const Marker* m : hits)
-                std::printf("[ exercise ] not done yet in this copy: `%s`, %s:%d\n", m->name.c_str(), m->file.c_str(),
-                            m->line);
+        const auto is_graded = [&](const Marker* m) {
+            return std::find(graded.begin(), graded.end(), m->name) != graded.end();
+        };
+        const auto first = std::find_if(order.begin(), order.end(), [](const Marker* m) { return m->unfinished; });
+        if (first != order.end()) {
+            const Marker& m = **first;
+            std::printf("[ exercise ] this test needs `%s`, still the stub: %s:%d\n             Hint: %s\n",
+                        m.name.c_str(), m.file.c_str(), m.line, m.hint.c_str());
+            for (const Marker* g : order)
+                if (is_graded(g) && g != &m)
+                    std::printf("[ exercise ] it also grades `%s` (%s:%d): finish `%s` first\n", g->name.c_str(),
+                                g->file.c_str(), g->line, m.name.c_str());
+        } else {
+            std::string names;
+            for (const Marker* m : order) names += (names.empty() ? "" : ", ") + m->name;
+            std::printf("[ exercise ] every exercise this test needs is done (%s)\n", names.c_str());
+            for (const Marker* g : order)
+                if (is_graded(g))
+                    std::printf("[ exercise ] compare your `%s` with its hint: %s:%d\n             Hint: %s\n",
+                                g->name.c_str(), g->file.c_str(), g->line, g->hint.c_str());
         }
-        if (!hits.empty())
-            std::printf("[ exercise ] pictures (actual | expected | difference): build/test_output/\n");
+        // tests/reference/image_compare.h writes them left to right in this order.
+        std::printf("[ exercise ] pictures (expected | actual | difference): build/test_output/\n");
     }
 };
 
