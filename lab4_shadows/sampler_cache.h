@@ -14,6 +14,9 @@
 #include <string>
 #include <vector>
 
+// The VkSamplerCreateInfo for `desc` with `anisotropy` (already clamped; 1 = off).
+VkSamplerCreateInfo sampler_info(const lab::SamplerDesc& desc, float anisotropy);
+
 // A material whose anisotropy is done by probes in the shader gets the sampler without it.
 // Anisotropy is clamped to the device limit (or off when the device lacks the feature) with one
 // warning line each time a request is clamped.

@@ -345,7 +345,8 @@ std::vector<lab::Image8> read_levels(const lab::VulkanContext& vk, const Texture
 // The device's mip chains, GPU blits and CPU fallback, colour and data, odd and even sizes
 // (wood.png's 100×60 among them): every level within 1/255 of the reference's double-precision
 // box average (tests/reference/cpu_texture.cpp) of the level above as the device holds it.
-TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
+namespace {
+void expect_levels_are_boxes(const std::vector<TexelEncoding>& encodings) {
     int messages = 0;
     {
         lab::ContextOptions options;
@@ -356,7 +357,7 @@ TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
         const auto next = [&] { return uint8_t((state = state * 1664525u + 1013904223u) >> 24); };
         const int sizes[][2] = {{64, 32}, {100, 60}, {7, 5}, {1, 9}, {33, 2}, {3, 3}};
         for (const auto& size : sizes)
-            for (const TexelEncoding encoding : {TexelEncoding::Srgb, TexelEncoding::Linear})
+            for (const TexelEncoding encoding : encodings)
                 for (const MipSource source : {MipSource::Auto, MipSource::Cpu}) {
                     lab::Image8 image;
                     image.width = size[0];
@@ -388,6 +389,15 @@ TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
     }
     EXPECT_EQ(messages, 0) << "validation messages";
 }
+}  // namespace
+
+TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
+    expect_levels_are_boxes({TexelEncoding::Srgb, TexelEncoding::Linear});
+}
+
+// The same for data maps alone: their format is plain UNORM whatever texel_format answers for
+// colour maps, so this checks the chain (mip_chain) by itself.
+TEST(MipChain, DataMapLevelsAreBoxesOfTheLevelAbove) { expect_levels_are_boxes({TexelEncoding::Linear}); }
 
 // --- the reference's sampling, by hand ---------------------------------------------
 
@@ -481,6 +491,73 @@ TEST(ReferenceSampling, LodAndTrilinear) {
     EXPECT_DOUBLE_EQ(ref::sample(q, s, {0.25, 0.25}, {0.75, 0}, {0, 0}).r, 0.5);
     s.mipmaps = lab::SamplerDesc::Mipmaps::None;  // level 0, bilinear at texel (0,0)'s far corner
     EXPECT_DOUBLE_EQ(ref::sample(q, s, {0.25, 0.25}, {0.75, 0}, {0, 0}).r, 1.0);
+}
+
+// --- sampler_settings: the VkSamplerCreateInfo a SamplerDesc asks for, field by field ----------
+// What each field must be comes from the spec ("Samplers") and scene.h's meaning of the settings,
+// not from the lab's code: the scene's filter is the texel filter in both directions, its wrap is
+// the address mode on every axis, its mipmaps the mipmap mode, and "none" clamps the LOD to level 0.
+
+namespace {
+lab::SamplerDesc sampler_desc(lab::SamplerDesc::Filter f, lab::SamplerDesc::Mipmaps m, lab::SamplerDesc::Wrap w) {
+    lab::SamplerDesc d;
+    d.filter = f, d.mipmaps = m, d.wrap = w;
+    return d;
+}
+}  // namespace
+
+TEST(SamplerSettings, FilterIsTheTexelFilterBothWays) {
+    using S = lab::SamplerDesc;
+    const VkSamplerCreateInfo nearest = sampler_info(sampler_desc(S::Filter::Nearest, S::Mipmaps::Linear, S::Wrap::Repeat), 1.0f);
+    EXPECT_EQ(nearest.sType, VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
+    EXPECT_EQ(nearest.magFilter, VK_FILTER_NEAREST);
+    EXPECT_EQ(nearest.minFilter, VK_FILTER_NEAREST);
+    const VkSamplerCreateInfo linear = sampler_info(sampler_desc(S::Filter::Linear, S::Mipmaps::Linear, S::Wrap::Repeat), 1.0f);
+    EXPECT_EQ(linear.magFilter, VK_FILTER_LINEAR);
+    EXPECT_EQ(linear.minFilter, VK_FILTER_LINEAR);
+}
+
+TEST(SamplerSettings, WrapIsTheAddressModeOnEveryAxis) {
+    using S = lab::SamplerDesc;
+    const std::pair<S::Wrap, VkSamplerAddressMode> cases[] = {
+        {S::Wrap::Repeat, VK_SAMPLER_ADDRESS_MODE_REPEAT},
+        {S::Wrap::Clamp, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE},
+        {S::Wrap::Mirror, VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT},
+    };
+    for (const auto& [wrap, mode] : cases) {
+        const VkSamplerCreateInfo info = sampler_info(sampler_desc(S::Filter::Linear, S::Mipmaps::Linear, wrap), 1.0f);
+        EXPECT_EQ(info.addressModeU, mode) << int(wrap);
+        EXPECT_EQ(info.addressModeV, mode) << int(wrap);
+        EXPECT_EQ(info.addressModeW, mode) << int(wrap);
+    }
+}
+
+TEST(SamplerSettings, MipmapsChooseTheModeAndNoneStaysOnLevelZero) {
+    using S = lab::SamplerDesc;
+    // The largest image (16384) has 15 levels: a mipmapped sampler must reach level 14.
+    const VkSamplerCreateInfo lin = sampler_info(sampler_desc(S::Filter::Linear, S::Mipmaps::Linear, S::Wrap::Repeat), 1.0f);
+    EXPECT_EQ(lin.mipmapMode, VK_SAMPLER_MIPMAP_MODE_LINEAR);
+    EXPECT_EQ(lin.minLod, 0.0f);
+    EXPECT_GE(lin.maxLod, 14.0f);
+    const VkSamplerCreateInfo near = sampler_info(sampler_desc(S::Filter::Linear, S::Mipmaps::Nearest, S::Wrap::Repeat), 1.0f);
+    EXPECT_EQ(near.mipmapMode, VK_SAMPLER_MIPMAP_MODE_NEAREST);
+    EXPECT_EQ(near.minLod, 0.0f);
+    EXPECT_GE(near.maxLod, 14.0f);
+    // The spec's way to switch mipmapping off: minLod 0 and maxLod at most 0.25 (level 0 only,
+    // and the magnification/minification choice still made from the LOD).
+    const VkSamplerCreateInfo none = sampler_info(sampler_desc(S::Filter::Linear, S::Mipmaps::None, S::Wrap::Repeat), 1.0f);
+    EXPECT_EQ(none.minLod, 0.0f);
+    EXPECT_LE(none.maxLod, 0.25f);
+}
+
+TEST(SamplerSettings, AnisotropyOnlyAboveOne) {
+    using S = lab::SamplerDesc;
+    const S d = sampler_desc(S::Filter::Linear, S::Mipmaps::Linear, S::Wrap::Repeat);
+    const VkSamplerCreateInfo off = sampler_info(d, 1.0f);
+    EXPECT_EQ(off.anisotropyEnable, VK_FALSE);
+    const VkSamplerCreateInfo eight = sampler_info(d, 8.0f);
+    EXPECT_EQ(eight.anisotropyEnable, VK_TRUE);
+    EXPECT_EQ(eight.maxAnisotropy, 8.0f);
 }
 
 // --- the sampler cache (a real device, validation on) ---------------------------------------
