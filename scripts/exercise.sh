@@ -13,7 +13,7 @@
 #   bash scripts/exercise.sh --prove BUILD_DIR LAB      # the grader's own test (CTest: grader_labN)
 #   bash scripts/exercise.sh --solution-lines LAB       # the substantive solution lines of LAB's and
 #                                                       # every later lab's exercises (name US where US code)
-#   bash scripts/exercise.sh --solution-code LAB        # their code as written, stubs too (for
+#   bash scripts/exercise.sh --solution-code LAB [only] # their code as written, stubs too (for
 #                                                       # scripts/comment_answers.py)
 #
 # LAB is 1, lab1 or lab1_camera. Without NAMEs every exercise of the lab is cut out.
@@ -268,11 +268,12 @@ solution_lines() {
 # The code of the exercises of lab $1 (a folder) and of every later lab, as written:
 # name US solution|stub US file:line US the line (stub lines without "// STUB: "). For
 # scripts/comment_answers.py, which derives each solution's distinctive tokens from it.
-solution_code() {
-  local lab="$1" l from=0 name file line hint tests
+solution_code() {  # LAB [only]: with "only", lab LAB's exercises alone
+  local lab="$1" only="${2:-}" l from=0 name file line hint tests
   for l in "${labs[@]}"; do
     [ "$l" = "$lab" ] && from=1
     ((from)) || continue
+    [ -n "$only" ] && [ "$l" != "$lab" ] && continue
     exercises_of "$l" | while IFS=$'\037' read -r name file line hint tests; do
       awk -v name="$name" -v first="$line" '
         FNR <= first { next }
@@ -303,9 +304,9 @@ boilerplate_lines() {
 #   (c) no text file holds a solution line (solution_lines) of the lab's or a later lab's
 #       exercises, compared without whitespace, as part of any line: a doc that quotes the answer,
 #       a later lab's file, a diff, a bench script with a shader in it all count;
-#   (d) no comment and no Markdown text names a solution's distinctive token (an enum such as
-#       VK_COMPARE_OP_LESS_OR_EQUAL, a call expression such as max(a.x,max(a.y,a.z))) that the
-#       copy's code does not hold anyway (scripts/comment_answers.py).
+#   (d) no comment and no Markdown text names a distinctive token of a solution of the lab (an
+#       enum, a nested call expression) that the copy's code does not hold anyway
+#       (scripts/comment_answers.py).
 # Prints one line per problem; exit 1 if there is one.
 check_copy() {
   local dir="$1" lab="$2" n problems=0 p name file line hint tests
@@ -358,7 +359,7 @@ check_copy() {
   ((reported > 20)) && echo "… and $((reported - 20)) more"
   problems=$((problems + reported))
   local comments
-  comments=$(solution_code "$lab" | python3 "$root/scripts/comment_answers.py" "$dir") || true
+  comments=$(solution_code "$lab" only | python3 "$root/scripts/comment_answers.py" "$dir") || true
   echo "$comments" | grep -v '^FAIL' || true
   problems=$((problems + $(echo "$comments" | grep -c '^FAIL' || true)))
   echo "$comments" | grep '^FAIL' | head -n 20 || true
@@ -588,9 +589,9 @@ case "${1:-}" in
     exit $?
     ;;
   --solution-code)
-    [ $# -eq 2 ] || die "usage: exercise.sh --solution-code LAB"
+    [ $# -eq 2 ] || [ "${3:-}" = only ] || die "usage: exercise.sh --solution-code LAB [only]"
     lab=$(resolve_lab "$2")
-    solution_code "$lab"
+    solution_code "$lab" "${3:-}"
     exit 0
     ;;
   --solution-lines)
