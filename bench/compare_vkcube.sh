@@ -6,6 +6,8 @@
 # which removes start-up cost. The lab's figure is its --benchmark median.
 #   bash bench/compare_vkcube.sh [lab] [frames]
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 lab="${1:-lab1_camera}"
 frames="${2:-300}"

@@ -12,6 +12,8 @@
 # tests/fuzz/regressions.txt (with a comment: what it found, what fixed it) so that every test run
 # replays it. Same CASES and SEED = the same cases.
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_ASAN_BUILD_DIR:-$root/build-asan}"
 cases="${1:-5000}"

@@ -9,6 +9,8 @@
 # Lab3Filtering.AnisotropyLowersTheErrorAgainstTheGroundTruth (build/test_output/lab3/sampler_errors.md).
 #   bash bench/lab3_samplers.sh [frames] [rounds]
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
 frames="${1:-60}"

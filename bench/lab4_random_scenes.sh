@@ -4,6 +4,8 @@
 # per part and the failing seeds with their scenes. CTest runs seeds 0..299; this starts there too.
 #   bash bench/lab4_random_scenes.sh [N] [BUILD_DIR]
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 count="${1:-3000}"
 build="${2:-${LAB_BUILD_DIR:-$root/build}}"

@@ -9,6 +9,8 @@
 # --benchmark median (ms); the summary gives the median over rounds and the spread (min–max).
 #   bash bench/lab4_shadows.sh [rounds] [frames]     (LP_NUM_THREADS=2 unless set)
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
 rounds="${1:-3}"

@@ -3,6 +3,8 @@
 # The machines are shared: compare figures from the same run (ratios), not across runs.
 #   bash bench/lab_figures.sh [frames] [rounds]
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
 frames="${1:-100}"

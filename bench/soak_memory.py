@@ -146,3 +146,13 @@ def per_minute_medians(samples, t0):
             minutes.setdefault(int(t / 60), []).append(kib)
     return "".join("%s%d" % (" " if minute else "", sorted(values)[(len(values) + 1) // 2 - 1])
                    for minute, values in sorted(minutes.items()))
+
+
+if __name__ == "__main__":
+    import sys
+    # A module, not a command: --help shows what it computes; bench/soak.py is what runs it.
+    if sys.argv[1:2] in (["-h"], ["--help"]):
+        print(__doc__.strip())
+        sys.exit(0)
+    print("soak_memory: a module of bench/soak.py, not a command (see --help)", file=sys.stderr)
+    sys.exit(2)

@@ -23,6 +23,8 @@
 #   3. per-light cost (one_labN − ambient) ≤ 2× the fixture's (one_fixture − ambient)
 #   4. lab4 ≤ 1.30× lab4_off, lab3 ≤ 1.30× lab2
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
 rounds="${1:-5}"

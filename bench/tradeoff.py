@@ -2,6 +2,8 @@
 """tradeoff.py — frame time against error for one lab's knobs (docs/tradeoffs.md).
 
     python3 bench/tradeoff.py LAB [--quick] [--build DIR] [--out-dir DIR] [--frames N] [--rounds R]
+    python3 bench/tradeoff.py LAB --replot    # draw LAB.png again from the committed LAB.csv
+    python3 bench/tradeoff.py --help          # every option
 
 For every configuration in the lab's knob table (bench/tradeoff_lib/knobs.py) the script writes
 a scene file, runs the lab headless with --benchmark (LP_NUM_THREADS fixed; the same process

@@ -11,6 +11,8 @@
 #   ROUNDS=2 IDLE=0 SHORT=50 LONG=250 bash bench/window_cost.sh lab2_lighting
 #        (2 rounds, skip the idle measurement, (T(250) − T(50)) / 200 for a slow lab)
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
 labs=("$@")

@@ -9,6 +9,8 @@
 # lacks (Xvfb for window tests and soaks, matplotlib for tradeoff_quick, glslang/CMake for the grader,
 # gallery and test_labels). Logs and failing tests' diff images come back under $OUT.
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root=$(git rev-parse --show-toplevel); cd "$root"
 build=$(cd "${1:-build}" && pwd)
 bundle=${GPU_BUNDLE:-$root/../shared/tools/gpu_bundle.sh}

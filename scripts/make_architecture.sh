@@ -9,6 +9,8 @@
 # the labs and the packages the layers link; a dashed edge is a PRIVATE link (not passed on: a lab
 # linking lab_app does not see lab_dev).
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 check=0
 if [ "${1:-}" = --check ]; then check=1; shift; fi

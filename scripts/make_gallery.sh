@@ -27,6 +27,8 @@
 # shows every picture and names no missing one. A failed check leaves the new picture and a
 # heatmap of the difference in build/test_output/gallery/<lab>/.
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 build="${LAB_BUILD_DIR:-$root/build}"

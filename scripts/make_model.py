@@ -65,6 +65,11 @@ def fmt(x):
 
 
 def main():
+    if sys.argv[1:2] in (["-h"], ["--help"]):
+        print(__doc__.strip())
+        return
+    if len(sys.argv) > 2 or sys.argv[1:2] and sys.argv[1].startswith("-"):
+        sys.exit("make_model: usage: python3 scripts/make_model.py [OUT_DIR] (see --help)")
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes", "models")
     os.makedirs(out_dir, exist_ok=True)

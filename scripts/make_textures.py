@@ -74,6 +74,11 @@ def wood(x, y):
 
 
 def main():
+    if sys.argv[1:2] in (["-h"], ["--help"]):
+        print(__doc__.strip())
+        return
+    if len(sys.argv) > 2 or sys.argv[1:2] and sys.argv[1].startswith("-"):
+        sys.exit("make_textures: usage: python3 scripts/make_textures.py [OUT_DIR] (see --help)")
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "scenes", "textures")
     os.makedirs(out, exist_ok=True)
     png(os.path.join(out, "tiles.png"), 256, 256, tiles)

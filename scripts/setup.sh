@@ -8,6 +8,8 @@
 # Idempotent: apt-get runs only when a package is missing, `npm ci` only when site/node_modules is
 # missing or older than site/package-lock.json. Uses sudo when not root.
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LAB_BUILD_DIR:-$root/build}"
 no_build=0

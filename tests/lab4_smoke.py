@@ -125,6 +125,12 @@ STRESS = {
 
 
 def main():
+    if sys.argv[1:2] in (["-h"], ["--help"]):
+        print(__doc__.strip())
+        return
+    if len(sys.argv) != 4:
+        print("lab4_smoke: usage: lab4_smoke.py LAB4_EXE SOURCE_DIR CASE (see --help)", file=sys.stderr)
+        sys.exit(2)
     exe, source, case = sys.argv[1:4]
     default_scene = os.path.join(source, "scenes", "lab4_shadows.json")
     with tempfile.TemporaryDirectory() as tmp:

@@ -122,6 +122,9 @@ def test_bad_usage():
 
 
 if __name__ == "__main__":
+    if sys.argv[1:2] in (["-h"], ["--help"]):
+        print(__doc__.strip())
+        sys.exit(0)
     test_memory_figure()
     test_bad_usage()
     print("test_soak: all passed" if failures == 0 else "test_soak: %d failed" % failures)

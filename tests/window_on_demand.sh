@@ -11,6 +11,8 @@
 #   3. a held key draws continuously (the camera moves every frame), and it idles again after;
 #   4. closing the window ends the run with exit code 0 (no validation message).
 set -euo pipefail
+# -h / --help: the comment at the top of this file, nothing run.
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 exe="$1"
 close_tool="$2"
 pixels_tool="$3"
