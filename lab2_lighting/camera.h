@@ -3,7 +3,7 @@
 //  Look-At:   the camera is given by where it is (eye), what it looks at
 //             (target) and which way is up.           view = lookAt(eye, target, up)
 //  Transform: the camera is an object in the world: a position and three
-//             angles.  C = T(position)·Ry(yaw)·Rx(pitch)·Rz(roll),  view = C⁻¹
+//             angles (yaw, pitch, roll).  C = camera → world,  view = C⁻¹
 //
 // Both describe the same thing — a pose — so switching modes converts the
 // parameters and the view matrix does not change (see set_mode()).
@@ -60,5 +60,5 @@ struct Camera {
 // Right-handed look-at, with the fallbacks of docs/conventions.md: eye == target
 // looks down −Z, and an `up` parallel to the view direction is replaced by ±Z (or ±X).
 glm::dmat4 look_at_camera_to_world(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up);
-// C = T(position) · Ry(yaw) · Rx(pitch) · Rz(roll), angles in degrees.
+// C, the camera-to-world matrix, from the position and the three angles in degrees (exercise transform).
 glm::dmat4 transform_camera_to_world(const glm::dvec3& position, double yaw_deg, double pitch_deg, double roll_deg);

@@ -63,9 +63,9 @@ struct GpuMaterial {
     glm::vec4 distortion[5];
 };
 
-// The spot cone as the shader uses it: factor = clamp((cosθ − cone.x)·cone.y, 0, 1), or a hard
-// edge (cosθ ≥ cone.x) when cone.y = 0. Both falloffs have this form: "edge" is "smooth" with
-// the ramp starting on the axis (inner = 0°). Computed in double (see docs/lighting.md).
+// The spot cone as the shader gets it: x = cos(outer), y = 1 / (cos(start of the ramp) − cos(outer)),
+// or 0 for a hard edge (how the shader turns them into a factor: exercise spot_cone). "edge" is
+// "smooth" with the ramp starting on the axis (inner = 0°). Computed in double (docs/lighting.md).
 glm::vec2 spot_cone(const lab::LightDesc& light, lab::LightingDesc::SpotFalloff falloff);
 
 // Everything the lighting panel can change.

@@ -5,10 +5,10 @@
 // GPU (or box-filtered on the CPU where the device can't), and the final layout the fragment
 // shader samples in. The sampler that reads it is sampler_cache.h.
 //
-// A colour map (albedo, emissive) is 8-bit RGBA in a *_SRGB format: the sampler decodes sRGB to
-// linear before it filters, so filtering and lighting happen in linear colour. A data map
-// (specular: a factor in [0, 1], not a colour) is *_UNORM: its bytes / 255 are the numbers
-// (docs/lighting.md).
+// A map is 8-bit RGBA. A colour map (albedo, emissive) holds sRGB-encoded bytes, as image files
+// do, while filtering and lighting must happen in linear colour; a data map (specular: a factor in
+// [0, 1], not a colour) holds plain numbers. The image's format tells the sampler which its bytes
+// are: which format for which map is exercise texel_format (texture.cpp; docs/lighting.md).
 #pragma once
 
 #include "buffer.h"
@@ -26,7 +26,7 @@ enum class MipSource { Auto, Cpu };
 enum class TexelEncoding { Srgb, Linear };
 
 struct Texture {
-    lab::Image image;  // R8G8B8A8 _SRGB or _UNORM, SHADER_READ_ONLY_OPTIMAL, the view covers every level
+    lab::Image image;  // 8-bit RGBA (format_of), SHADER_READ_ONLY_OPTIMAL, the view covers every level
     uint32_t width = 0;
     uint32_t height = 0;
     uint32_t levels = 1;

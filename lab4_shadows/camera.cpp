@@ -57,9 +57,8 @@ glm::dmat4 look_at_camera_to_world(const glm::dvec3& eye, const glm::dvec3& targ
 }
 
 glm::dmat4 transform_camera_to_world(const glm::dvec3& position, double yaw_deg, double pitch_deg, double roll_deg) {
-    // Read right to left: roll about the view axis first, then pitch about the
-    // camera's X, then yaw about world Y, then move to the position. Yaw last
-    // means "turn left/right" always turns about world up, like a person.
+    // In which order must the turns come so that "turn left/right" always turns
+    // about world up, like a person, whatever the pitch and roll?
     // EXERCISE transform: the camera-to-world matrix from position, yaw_deg, pitch_deg, roll_deg: about which axis does each angle turn, in which order, in what unit for glm::rotate? Read this lab's README "Transform mode", glm::rotate's documentation. Wrong: each angle alone looks right but together they tilt the horizon, or the view swings wildly. Checked by Transform.*, Lab1Render.TransformCameraYawPitchRoll.
     // STUB: return glm::translate(glm::dmat4(1.0), position);  // the angles are ignored
     const glm::dmat4 t = glm::translate(glm::dmat4(1.0), position);

@@ -60,6 +60,7 @@ LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass p
 void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color,
                           float depth = 1.0f);
 
-// A sampler for depth maps: nearest or linear, optionally comparing (compare op LESS_OR_EQUAL:
-// 1 where the reference ≤ the stored depth); outside the map it reads white (depth 1).
+// A sampler for depth maps: nearest or linear, optionally comparing the lookup's reference depth
+// with the stored one (which compare op, which border colour outside the map: exercise
+// comparison_sampler in offscreen.cpp).
 lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool linear, bool compare);

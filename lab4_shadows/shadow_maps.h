@@ -25,7 +25,7 @@
 struct GpuShadow {
     glm::mat4 view_projection;  // (world − origin) → the map's clip space (2D maps)
     glm::vec4 origin;           // xyz: the light (spot, cube), the fitted box's centre (directional)
-    glm::vec4 params;           // x: normal offset (world; perspective: per unit distance), y, z: depth = y − z / distance
+    glm::vec4 params;           // x: normal offset (world; perspective: per unit distance), y, z: a perspective map's depth constants (shadows.glsl)
     glm::vec4 translucent;      // x: the translucent tolerance in depth (perspective: times 1 / distance)
 };
 using GpuShadows = std::array<GpuShadow, kMaxShadowLights>;  // [slot]

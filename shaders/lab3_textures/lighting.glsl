@@ -104,7 +104,7 @@ float power(float x, float n) {
     return x > 0.0 ? pow(x, n) : 0.0;
 }
 
-// Light falloff 1 / (c + l·d + q·d²); [0, 0, 0] = no falloff; denominator ≥ MIN_DENOMINATOR.
+// Light falloff: the fraction of a light's radiance left at the distance d (exercise attenuation).
 float attenuation(vec3 k, float d) {
     // EXERCISE attenuation: what fraction of a light's radiance is left after the distance d, given k = (constant, linear, quadratic)? And if all are zero, or their sum tiny? Read docs/lighting.md "Light types", "Numerical safety" (MIN_DENOMINATOR). Wrong: lights with no falloff look like flat floodlights, near and far walls equally lit; Inf/NaN pixels. Checked by Lab2Render.PointLights.
     // STUB: return 1.0;  // no falloff: every point light reaches everywhere at full strength

@@ -59,8 +59,9 @@ vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
     // END EXERCISE
 }
 
-// a = albedo·A(uv'), s = specular·S(uv'), e = emissive + emissive_strength·E(uv') with
-// uv' = uv·uv_scale + uv_offset; a map the material lacks is not sampled at all.
+// The material with its maps read at the material's tiled and shifted UVs (exercises uv_transform
+// and texture_terms; docs/lighting.md, "Lab 3: textured terms"); a map the material lacks is not
+// sampled at all.
 Material textured(Material m, vec2 uv, vec3 P) {
     // EXERCISE uv_transform: the UV the maps are read at: uv tiled by uv_scale and shifted by uv_offset: which comes first, where are they in m.uv_transform? Read docs/scene-format.md (uv_scale), the Vulkan spec's "Wrapping Operation". Wrong: the map once per object whatever uv_scale says, or shifted by the wrong amount. Checked by Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
     // STUB: // the UVs as they are: no tiling, no shift

@@ -36,8 +36,10 @@ struct ShadowSlot {
     vec4 origin;           // xyz: the light (spot, cube maps), the fitted box's centre (directional);
                            // positions are taken relative to it, where a float keeps their digits
     vec4 params;           // x: normal offset in world units (perspective maps: per unit of distance),
-                           // y, z: a perspective map's depth = y − z / distance along its axis;
-                           // z > 0 also marks a perspective 2D map (spot)
+                           // y, z: the two constants of a perspective map's depth as a function of
+                           // the distance along its axis (which function? the README, "Two passes",
+                           // and shadow_maps.cpp, where they are computed); z > 0 also marks a
+                           // perspective 2D map (spot)
     vec4 translucent;      // x: how far (in depth) a receiver must lie behind the nearest translucent
                            // caster to be behind it; perspective maps: divided by P's distance along the axis
 };
@@ -114,8 +116,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     return outside ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
 }
 
-// The depth the cube map stored for P, v = P relative to the light: v's largest coordinate picks
-// the face, P's distance along that face's axis gives the perspective depth the pass stored.
+// The depth the cube map stored for P, v = P relative to the light (exercise cube_face_depth).
 float cube_depth_of(vec3 v, ShadowSlot s) {
     // EXERCISE cube_face_depth: which face does v fall in, how far is P along that face's axis, and what depth did that face's perspective projection store for that distance (the comment on params in ShadowSlot)? Wrong: point lights cast no shadow, or only on one face. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
     // STUB: return 0.0;  // everything in front of every caster: no shadow

@@ -13,8 +13,8 @@ layout(set = 0, binding = 9) uniform sampler2DArray cube_translucency[4];  // a 
 // map: z = 1, K as it is; K from the map, translucent_shadows.cpp): a fixed tolerance in depth
 // would not do, perspective depth crowds towards 1 (1e-4 of it is metres at a far light).
 
-// One tap's light: 1 or 0 from the depth compare, times the translucent casters' transmittance
-// when the point lies behind the nearest of them by more than `tolerance` (in depth, see above).
+// One tap's light: `lit` (1 or 0) from the depth compare, and what the translucent casters along
+// the ray do to it (exercise translucent_tap; `tolerance`, in depth, see above).
 float tap(float lit, bool translucent, vec2 transmittance, float ref, float tolerance) {
     // EXERCISE translucent_tap: when does the light pass through the translucent casters before reaching P, and how much of it is left (what do r and g of the transmittance map hold)? Wrong: a glass object casts no shadow, or shadows itself. Checked by Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply.
     // STUB: return lit;  // translucent casters let all the light through
