@@ -132,7 +132,7 @@ bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(ligh
 
 void ShadowMaps::draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
-    const GpuShadow& gpu = maps_[size_t(slot)].gpu;  // perspective depth: y − z / distance
+    const GpuShadow& gpu = maps_[size_t(slot)].gpu;  // y, z: the perspective depth constants
     view.draw(cmd, maps_[size_t(slot)].depth, glm::vec2(gpu.params.y, gpu.params.z), extent);
 }
 
