@@ -2,9 +2,15 @@
 # make_architecture.sh — the picture of common/'s layers in docs/architecture.md, drawn from the
 # build's own dependency graph (cmake --graphviz), so it cannot drift from the CMakeLists.
 #
-#   bash scripts/make_architecture.sh [BUILD]          # writes docs/images/architecture.{dot,svg}
-#   bash scripts/make_architecture.sh --check [BUILD]  # exit 1 if the committed .dot is not today's
-#                                                      # graph (CTest: architecture_up_to_date)
+#   bash scripts/make_architecture.sh [BUILD]          # writes docs/images/architecture.{dot,svg,png}
+#   bash scripts/make_architecture.sh --check [BUILD]  # exit 1 if the committed pictures are not
+#                                                      # today's graph (CTest: architecture_up_to_date)
+#
+# --check: the .dot must be today's graph, and the .svg and the .png (the one docs/architecture.md
+# shows) drawn from that .dot: each records the .dot's hash (an SVG comment, a PNG tEXt chunk),
+# and where this machine's graphviz is the version that drew them, drawing the .dot again must give
+# the same bytes (dot's output is deterministic; another version lays out differently, then only
+# the hashes are compared).
 # BUILD: a configured build folder (default: build/). The graph keeps the four layer libraries,
 # the labs and the packages the layers link; a dashed edge is a PRIVATE link (not passed on: a lab
 # linking lab_app does not see lab_dev).
@@ -16,6 +22,7 @@ check=0
 if [ "${1:-}" = --check ]; then check=1; shift; fi
 build="${1:-${LAB_BUILD_DIR:-$root/build}}"
 [ -f "$build/CMakeCache.txt" ] || { echo "make_architecture: $build is not a configured build folder (run scripts/setup.sh)" >&2; exit 2; }
+build="$(cd "$build" && pwd)"  # cmake --graphviz runs in a temporary folder
 command -v dot >/dev/null || { echo "make_architecture: graphviz's dot not found (scripts/setup.sh installs graphviz)" >&2; exit 2; }
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 (cd "$tmp" && cmake --graphviz=graph.dot "$build" >/dev/null)
@@ -57,20 +64,41 @@ print("}")
 PY
 
 dot_file="$root/docs/images/architecture.dot"
+images="$root/docs/images"
+version="$(dot -V 2>&1)"
+# draw DOT OUT_DIR: architecture.svg and architecture.png from DOT, each carrying DOT's hash and
+# the graphviz version (an SVG comment; a PNG tEXt chunk, written after IHDR).
+draw() {
+  local source; source="drawn from architecture.dot $(sha256sum "$1" | cut -c1-16) by $version"
+  { dot -Tsvg "$1" | sed "1a <!-- $source -->"; } >"$2/architecture.svg"
+  dot -Tpng -Gdpi=110 "$1" | python3 -c '
+import struct, sys, zlib
+png, text = sys.stdin.buffer.read(), b"Source\0" + sys.argv[1].encode()
+chunk = struct.pack(">I", len(text)) + b"tEXt" + text + struct.pack(">I", zlib.crc32(b"tEXt" + text))
+end_of_ihdr = 8 + 8 + 13 + 4
+sys.stdout.buffer.write(png[:end_of_ihdr] + chunk + png[end_of_ihdr:])' "$source" >"$2/architecture.png"
+}
 if ((check)); then
   if ! diff -u "$dot_file" "$tmp/architecture.dot"; then
     echo "make_architecture: docs/images/architecture.dot is stale; run bash scripts/make_architecture.sh" >&2
     exit 1
   fi
-  grep -q "$(sha256sum "$dot_file" | cut -c1-16)" "$root/docs/images/architecture.svg" ||
-    { echo "make_architecture: docs/images/architecture.svg was not drawn from the committed .dot" >&2; exit 1; }
-  echo "make_architecture: docs/images/architecture.dot is today's graph"
+  hash="drawn from architecture.dot $(sha256sum "$dot_file" | cut -c1-16) by "
+  mkdir "$tmp/drawn"; draw "$dot_file" "$tmp/drawn"
+  for picture in architecture.svg architecture.png; do
+    grep -aq "$hash" "$images/$picture" ||
+      { echo "make_architecture: docs/images/$picture was not drawn from the committed .dot; run bash scripts/make_architecture.sh" >&2; exit 1; }
+    if grep -aqF "$hash$version" "$images/$picture"; then  # drawn by this graphviz: the same bytes
+      cmp -s "$images/$picture" "$tmp/drawn/$picture" ||
+        { echo "make_architecture: docs/images/$picture is not what $version draws from the committed .dot; run bash scripts/make_architecture.sh" >&2; exit 1; }
+    else
+      echo "make_architecture: docs/images/$picture was drawn by another graphviz than $version: only its .dot hash is compared"
+    fi
+  done
+  echo "make_architecture: docs/images/architecture.dot is today's graph, and its .svg and .png are drawn from it"
   exit 0
 fi
-mkdir -p "$root/docs/images"
+mkdir -p "$images"
 cp "$tmp/architecture.dot" "$dot_file"
-# The .dot's hash in the SVG, so --check can tell the picture was drawn from it.
-{ dot -Tsvg "$dot_file" | sed "1a <!-- drawn from architecture.dot $(sha256sum "$dot_file" | cut -c1-16) -->"; } \
-  >"$root/docs/images/architecture.svg"
-dot -Tpng -Gdpi=110 "$dot_file" -o "$root/docs/images/architecture.png"
+draw "$dot_file" "$images"
 echo "make_architecture: wrote docs/images/architecture.dot, .svg and .png"
