@@ -8,6 +8,7 @@
 // ndc = (k + 0.5)·2/N − 1, e.g. for N = 8: ±0.125, ±0.375, ±0.625, ±0.875.
 #include "reference/cpu_reference.h"
 #include "reference/image_compare.h"
+#include "reference/scene_object.h"
 
 #include <gtest/gtest.h>
 
@@ -46,16 +47,7 @@ void look(lab::Scene& s, dvec3 eye, dvec3 target, dvec3 up = {0, 1, 0}) {
     s.camera.up = glm::vec3(up);
 }
 
-lab::ObjectDesc object(const std::string& mesh, const std::string& material, glm::vec3 position,
-                       glm::vec3 rotation_deg = glm::vec3(0.0f), glm::vec3 scale = glm::vec3(1.0f)) {
-    lab::ObjectDesc o;
-    o.mesh = mesh;
-    o.material = material;
-    o.position = position;
-    o.rotation_deg = rotation_deg;
-    o.scale = scale;
-    return o;
-}
+using ref::object;  // position, rotation, scale: tests/reference/scene_object.h
 
 // A plane of side `size` centred at `position`, rotated so its front (+Y in
 // model space) faces +Z: Rx(90°) maps (x, y, z) to (x, −z, y).

@@ -7,6 +7,7 @@
 #include "reference/cpu_shadow.h"
 #include "reference/cpu_reference.h"
 #include "reference/image_compare.h"
+#include "reference/scene_object.h"
 
 #include <gtest/gtest.h>
 
@@ -18,16 +19,7 @@ namespace {
 
 using glm::dvec3;
 
-lab::ObjectDesc object(const std::string& mesh, const std::string& material, glm::vec3 position,
-                       glm::vec3 scale = glm::vec3(1.0f), glm::vec3 rotation_deg = glm::vec3(0.0f)) {
-    lab::ObjectDesc o;
-    o.mesh = mesh;
-    o.material = material;
-    o.position = position;
-    o.scale = scale;
-    o.rotation_deg = rotation_deg;
-    return o;
-}
+using ref::object;  // position, rotation, scale: tests/reference/scene_object.h
 
 lab::LightDesc directional(dvec3 direction) {
     lab::LightDesc l;
@@ -54,7 +46,7 @@ lab::Scene floor_scene() {
     s.materials["opaque"].albedo = {0.5f, 0.5f, 0.5f};
     s.materials["glass30"].opacity = 0.3f;
     s.materials["glass50"].opacity = 0.5f;
-    s.objects.push_back(object("plane", "opaque", {0, 0, 0}, {10, 1, 10}));
+    s.objects.push_back(object("plane", "opaque", {0, 0, 0}, {0, 0, 0}, {10, 1, 10}));
     return s;
 }
 
@@ -109,7 +101,7 @@ TEST(CpuShadow, UnitCubeUnderAPointAndASpotLight) {
 TEST(CpuShadow, APlaneFacingAwayFromTheLightStillBlocksIt) {
     // Opaque casters block from either side: a 2 × 2 plane at y = 1 turned upside down (front −Y).
     lab::Scene s = floor_scene();
-    s.objects.push_back(object("plane", "opaque", {0, 1, 0}, {2, 1, 2}, {180, 0, 0}));
+    s.objects.push_back(object("plane", "opaque", {0, 1, 0}, {180, 0, 0}, {2, 1, 2}));
     EXPECT_EQ(through(s, directional({0, -1, 0}), {0.9, 0, 0}), 0.0);
     EXPECT_EQ(through(s, directional({0, -1, 0}), {1.1, 0, 0}), 1.0);
 }
@@ -117,7 +109,7 @@ TEST(CpuShadow, APlaneFacingAwayFromTheLightStillBlocksIt) {
 TEST(CpuShadow, CasterBehindTheLightCastsNothing) {
     // The light at y = 1, an opaque plane above it at y = 2: the segment floor → light is free.
     lab::Scene s = floor_scene();
-    s.objects.push_back(object("plane", "opaque", {0, 2, 0}, {4, 1, 4}));
+    s.objects.push_back(object("plane", "opaque", {0, 2, 0}, {0, 0, 0}, {4, 1, 4}));
     for (const auto type : {lab::LightDesc::Type::Point, lab::LightDesc::Type::Spot}) {
         EXPECT_EQ(through(s, positional(type, {0, 1, 0}), {0, 0, 0}), 1.0);
         EXPECT_EQ(through(s, positional(type, {0, 3, 0}), {0, 0, 0}), 0.0);  // control: light above it
@@ -156,7 +148,7 @@ TEST(CpuShadow, ATessellatedSpheresTerminatorFollowsItsFacets) {
     // does not — those points are shadowed.
     lab::Scene s;
     s.materials["opaque"] = {};
-    s.objects.push_back(object("sphere", "opaque", {0.2f, 1.0f, -0.3f}, {2, 2, 2}));
+    s.objects.push_back(object("sphere", "opaque", {0.2f, 1.0f, -0.3f}, {0, 0, 0}, {2, 2, 2}));
     const ref::SceneGeometry geometry(s);
     const ref::ShadowCasters casters(s);
     const dvec3 centre(0.2, 1.0, -0.3);
@@ -191,7 +183,7 @@ TEST(CpuShadow, ATessellatedSpheresTerminatorFollowsItsFacets) {
 
 TEST(CpuShadow, ATranslucentQuadLetsOneMinusAlphaThrough) {
     lab::Scene s = floor_scene();
-    s.objects.push_back(object("plane", "glass30", {0, 1, 0}, {2, 1, 2}));  // faces +Y: the light
+    s.objects.push_back(object("plane", "glass30", {0, 1, 0}, {0, 0, 0}, {2, 1, 2}));  // faces +Y: the light
     const lab::LightDesc light = directional({0, -1, 0});
     EXPECT_DOUBLE_EQ(through(s, light, {0, 0, 0}), kT30);
     EXPECT_DOUBLE_EQ(through(s, light, {0.5, 0, 0.5}), kT30);  // a ray through the quad's diagonal: once
@@ -204,15 +196,15 @@ TEST(CpuShadow, ATranslucentQuadLetsOneMinusAlphaThrough) {
 TEST(CpuShadow, OverlappingTranslucentCastersMultiply) {
     // Two quads, α = 0.3 at y = 1 over x ∈ [−1, 1] and α = 0.5 at y = 2 over x ∈ [0, 2].
     lab::Scene s = floor_scene();
-    s.objects.push_back(object("plane", "glass30", {0, 1, 0}, {2, 1, 2}));
-    s.objects.push_back(object("plane", "glass50", {1, 2, 0}, {2, 1, 2}));
+    s.objects.push_back(object("plane", "glass30", {0, 1, 0}, {0, 0, 0}, {2, 1, 2}));
+    s.objects.push_back(object("plane", "glass50", {1, 2, 0}, {0, 0, 0}, {2, 1, 2}));
     const lab::LightDesc light = directional({0, -1, 0});
     EXPECT_DOUBLE_EQ(through(s, light, {-0.5, 0, 0}), kT30);
     EXPECT_DOUBLE_EQ(through(s, light, {0.5, 0, 0}), kT30 * kT50);
     EXPECT_DOUBLE_EQ(through(s, light, {1.5, 0, 0}), kT50);
     EXPECT_EQ(through(s, light, {2.5, 0, 0}), 1.0);
     // An opaque caster anywhere on the ray still wins.
-    s.objects.push_back(object("cube", "opaque", {0.5f, 3.0f, 0}, {0.2f, 0.2f, 0.2f}));
+    s.objects.push_back(object("cube", "opaque", {0.5f, 3.0f, 0}, {0, 0, 0}, {0.2f, 0.2f, 0.2f}));
     EXPECT_EQ(through(s, light, {0.5, 0, 0}), 0.0);
 }
 
@@ -261,21 +253,21 @@ TEST(CpuShadowPicture, TranslucentLayersBlendBackToFront) {
     lab::Scene s = blend_scene();
     const dvec3 bg(0.2, 0.4, 0.6), red(1, 0, 0), blue(0, 0, 1), wall(0, 1, 0);
     // A quad facing the camera (plane rotated +90° about X: front +Z).
-    s.objects.push_back(object("plane", "red", {0, 0, 1}, {2, 1, 2}, {90, 0, 0}));
+    s.objects.push_back(object("plane", "red", {0, 0, 1}, {90, 0, 0}, {2, 1, 2}));
     expect_colour(centre_pixel(s), 0.25 * red + 0.75 * bg);
     // Its back (rotated −90°: front −Z, seen from behind) is drawn too.
     s.objects.back().rotation_deg = {-90, 0, 0};
     expect_colour(centre_pixel(s), 0.25 * red + 0.75 * bg);
     // A second layer behind it and an opaque wall behind both.
-    s.objects.push_back(object("plane", "blue", {0, 0, 0}, {2, 1, 2}, {90, 0, 0}));
-    s.objects.push_back(object("plane", "wall", {0, 0, -1}, {4, 1, 4}, {90, 0, 0}));
+    s.objects.push_back(object("plane", "blue", {0, 0, 0}, {90, 0, 0}, {2, 1, 2}));
+    s.objects.push_back(object("plane", "wall", {0, 0, -1}, {90, 0, 0}, {4, 1, 4}));
     expect_colour(centre_pixel(s), 0.25 * red + 0.75 * (0.5 * blue + 0.5 * wall));
     // A translucent cube: back face, then front face, over the background.
     lab::Scene c = blend_scene();
     c.objects.push_back(object("cube", "blue", {0, 0, 0}));
     expect_colour(centre_pixel(c), 0.5 * blue + 0.5 * (0.5 * blue + 0.5 * bg));
     // Behind an opaque wall nothing translucent shows.
-    c.objects.push_back(object("plane", "wall", {0, 0, 2}, {4, 1, 4}, {90, 0, 0}));
+    c.objects.push_back(object("plane", "wall", {0, 0, 2}, {90, 0, 0}, {4, 1, 4}));
     expect_colour(centre_pixel(c), wall);
 }
 
@@ -283,7 +275,7 @@ TEST(CpuShadowPicture, ATranslucentCubeOnTheFloorShowsTheFloorThroughIt) {
     // The cube's bottom face lies in the floor's plane: the opaque floor wins the tie.
     lab::Scene s = blend_scene();
     s.camera.position = {0, 5, 0.001f};
-    s.objects.push_back(object("plane", "wall", {0, 0, 0}, {8, 1, 8}));
+    s.objects.push_back(object("plane", "wall", {0, 0, 0}, {0, 0, 0}, {8, 1, 8}));
     s.objects.push_back(object("cube", "blue", {0, 0.5f, 0}));
     const dvec3 blue(0, 0, 1), wall(0, 1, 0);
     expect_colour(centre_pixel(s), 0.5 * blue + 0.5 * wall);
@@ -296,7 +288,7 @@ TEST(CpuShadowPicture, ShadowsDarkenOnlyShadowCastingLights) {
     s.camera.target = {0, 0, 0};
     s.ambient.intensity = 0.0f;
     s.lighting.model = lab::LightingDesc::Model::Lambert;
-    s.objects.push_back(object("cube", "glass50", {0, 2, 0}, {0.5f, 0.5f, 0.5f}));
+    s.objects.push_back(object("cube", "glass50", {0, 2, 0}, {0, 0, 0}, {0.5f, 0.5f, 0.5f}));
     s.objects.back().cast_shadows = true;
     s.lights.push_back(directional({0, -1, 0}));
     // The centre pixel sees, front to back: the cube's top (lit: 0.8 albedo · 1), its bottom from inside
