@@ -17,9 +17,9 @@ float SamplerCache::effective_anisotropy(int requested) const {
 // The sampler a material's settings ask for, `anisotropy` already clamped to the device: only a
 // choice of fields, no device, so it can be checked field by field.
 VkSamplerCreateInfo sampler_info(const lab::SamplerDesc& desc, float anisotropy) {
+    using S = lab::SamplerDesc;
     // EXERCISE sampler_settings: fill `info` from `desc`: which filter for magnification and minification, which mipmap mode, which address mode on each axis, whether anisotropy is on and how much (`anisotropy` is already clamped to the device), and how "mipmaps": "none" keeps the sampler on level 0. Read VkSamplerCreateInfo in the spec ("Samplers") and lab::SamplerDesc in scene.h. Wrong: every texture blocky and shimmering, mirror wrap repeating, the far floor a moiré. Checked by SamplerSettings.*, Lab3Render.MinifiedFloorTrilinear, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.AlbedoMapMagnified.
     // STUB: VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // nearest, repeat, level 0 only
-    using S = lab::SamplerDesc;
     const VkFilter filter = desc.filter == S::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
     const VkSamplerAddressMode wrap = desc.wrap == S::Wrap::Repeat  ? VK_SAMPLER_ADDRESS_MODE_REPEAT
                                       : desc.wrap == S::Wrap::Clamp ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE

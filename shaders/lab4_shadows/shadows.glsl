@@ -116,15 +116,20 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     return outside ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
 }
 
-// The depth the cube map stored for P, v = P relative to the light (exercise cube_face_depth).
-float cube_depth_of(vec3 v, ShadowSlot s) {
-    // EXERCISE cube_face_depth: which face does v fall in, how far is P along that face's axis, and what depth did that face's perspective projection store for that distance (the comment on params in ShadowSlot)? Wrong: point lights cast no shadow, or only on one face. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
-    // STUB: return 0.0;  // everything in front of every caster: no shadow
+// For P at v from the light (v = P − light): its distance along the axis of the cube face it falls
+// in, and the depth that face's projection stored for that distance (exercise cube_face_depth).
+// EXERCISE cube_face_depth: face_distance: which face does v fall in, and how far is P along that face's axis (each face is a 90° perspective view along ±X, ±Y or ±Z)? cube_depth_of: what depth did that face's projection store for that distance (the comment on params in ShadowSlot)? Wrong: point lights cast no shadow, or shadows that bend and leak away from the six axes. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
+// STUB: float face_distance(vec3 v) { return length(v); }  // the distance to the light, not along a face's axis
+// STUB: float cube_depth_of(vec3 v, ShadowSlot s) { return 0.0; }  // everything in front of every caster: no shadow
+float face_distance(vec3 v) {
     const vec3 a = abs(v);
-    const float z = max(a.x, max(a.y, a.z));
-    return s.params.y - s.params.z / max(z, 1e-30);
-    // END EXERCISE
+    return max(a.x, max(a.y, a.z));
 }
+
+float cube_depth_of(vec3 v, ShadowSlot s) {
+    return s.params.y - s.params.z / max(face_distance(v), 1e-30);
+}
+// END EXERCISE
 
 // The face direction d falls in and where, as Vulkan's cube sampling picks them (spec, "Cube Map
 // Face Selection"): the largest coordinate picks the face (layer 0…5: +X, −X, +Y, −Y, +Z, −Z),
@@ -150,10 +155,8 @@ vec3 cube_face_uv(vec3 d) {
 float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sampler2DArray translucent_map, int pcf,
                   int filter_mode, bool translucent, ShadowSlot s, vec3 P, vec3 N) {
     vec3 v = P - s.origin.xyz;
-    const vec3 a0 = abs(v);
-    v += N * s.params.x * max(a0.x, max(a0.y, a0.z));  // normal offset, texels grow with distance
-    const vec3 a = abs(v);
-    const float z = max(a.x, max(a.y, a.z));
+    v += N * s.params.x * face_distance(v);  // normal offset, texels grow with distance
+    const float z = face_distance(v);
     // P at the light itself: lit. As in shadow_2d, no early return (lavapipe): every pixel reads,
     // along +X when it has no direction, and the answer is picked at the end.
     const bool at_light = !(z > 0.0);
