@@ -125,21 +125,21 @@ Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, 
     // everything it will be: sampled, a copy's destination, and TRANSFER_SRC (the blits read the
     // levels above; tests read every level back).
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    t.image = lab::create_image_2d(vk, {t.width, t.height}, format, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
+    t.image = create_image_2d(vk, {t.width, t.height}, format, usage, VK_IMAGE_ASPECT_COLOR_BIT, t.levels);
     const VkImage image = t.image.image;
     vk.run_once([&](VkCommandBuffer cmd) {
         const auto transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
         // A new image's layout is UNDEFINED (its contents may be discarded); a copy writes only
         // into TRANSFER_DST_OPTIMAL. The barrier changes the layout of every level and orders the
         // change before the copy's writes.
-        lab::image_barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+        image_barrier(cmd, image, 0, t.levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, transfer);
         vkCmdCopyBufferToImage(cmd, staging.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies.size()),
                                copies.data());
         // A level is done when it is in SHADER_READ_ONLY_OPTIMAL, its last write (copy or blit)
         // made visible to the fragment shader's reads.
         const auto to_shader = [&](uint32_t level, VkImageLayout from, VkAccessFlags access) {
-            lab::image_barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
+            image_barrier(cmd, image, level, 1, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access,
                     VK_ACCESS_SHADER_READ_BIT, transfer, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
         };
         if (!gpu_mips) {
@@ -156,7 +156,7 @@ Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, 
         // STUB:     to_shader(level, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT);
         int32_t w = int32_t(t.width), h = int32_t(t.height);
         for (uint32_t level = 1; level < t.levels; ++level) {
-            lab::image_barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+            image_barrier(cmd, image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, transfer, transfer);
             const int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
             VkImageBlit blit{};

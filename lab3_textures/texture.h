@@ -11,7 +11,7 @@
 // are: which format for which map is exercise texel_format (texture.cpp; docs/lighting.md).
 #pragma once
 
-#include "buffer.h"
+#include "image.h"
 #include "image_io.h"
 #include "vk_context.h"
 

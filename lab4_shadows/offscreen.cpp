@@ -1,6 +1,7 @@
 // offscreen.cpp — the shadow pass's render passes, images, framebuffers and samplers (offscreen.h).
 #include "offscreen.h"
 
+#include "cube_map.h"
 #include "render_target.h"
 #include "vk_check.h"
 
@@ -127,23 +128,14 @@ LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass p
     t.pass = pass;
     t.size = size;
     t.color = (aspect & VK_IMAGE_ASPECT_COLOR_BIT) != 0;
-    t.image = cube ? lab::create_image_cube(vk, size, format, usage, aspect) : lab::create_image_2d(vk, {size, size}, format, usage, aspect);
+    t.image = cube ? create_image_cube(vk, size, format, usage, aspect) : create_image_2d(vk, {size, size}, format, usage, aspect);
     for (uint32_t layer = 0; layer < (cube ? 6u : 1u); ++layer) {
-        if (cube) t.layer_views.push_back(lab::create_layer_view(vk, t.image.image, format, aspect, layer));
+        if (cube) t.layer_views.push_back(create_layer_view(vk, t.image.image, format, aspect, layer));
         std::vector<VkImageView> views = {t.layer(layer)};
         views.insert(views.end(), more.begin(), more.end());
         t.framebuffers.push_back(make_square_framebuffer(vk, pass, views, size));
     }
-    if (cube) {  // the six faces as a 2D array: a view of a cube-compatible image may see it so
-        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        view.image = t.image.image;
-        view.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-        view.format = format;
-        view.subresourceRange = {aspect, 0, 1, 0, 6};
-        VkImageView faces;
-        VK_CHECK(vkCreateImageView(vk.device(), &view, nullptr, &faces));
-        t.faces = lab::Handle<VkImageView>(faces, [device = vk.device()](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
-    }
+    if (cube) t.faces = create_faces_view(vk, t.image.image, format, aspect);  // the six faces as a 2D array
     return t;
 }
 

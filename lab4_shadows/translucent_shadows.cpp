@@ -2,6 +2,7 @@
 // pipelines, and the depth tolerance the lookup uses (translucent_shadows.h).
 #include "translucent_shadows.h"
 
+#include "image.h"
 #include "shader.h"
 
 namespace {
@@ -41,8 +42,8 @@ TranslucentShadows::TranslucentShadows(const lab::VulkanContext& vk, VkFormat de
 TranslucentShadows::Map TranslucentShadows::make_map(uint32_t resolution, bool cube) const {
     Map m;
     // One scratch depth serves every face (the faces are rendered one after the other).
-    m.scratch_depth = lab::create_image_2d(vk_, {resolution, resolution}, depth_format_,
-                                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    m.scratch_depth = create_image_2d(vk_, {resolution, resolution}, depth_format_,
+                                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
     const VkImageUsageFlags sampled_color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     m.transmittance = create_layered_target(vk_, pass_, resolution, cube, format_, sampled_color, VK_IMAGE_ASPECT_COLOR_BIT,
                                             {m.scratch_depth.view});

@@ -9,12 +9,12 @@ HeadlessTarget::HeadlessTarget(const VulkanContext& vk, VkExtent2D extent)
       extent_(extent),
       // The pass leaves the image ready to be copied out.
       render_pass_(make_render_pass(vk, kColorFormat, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)),
-      color_(create_image_2d(vk, extent, kColorFormat,
-                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                             VK_IMAGE_ASPECT_COLOR_BIT)),
-      depth_(create_image_2d(vk, extent, vk.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                             VK_IMAGE_ASPECT_DEPTH_BIT)),
-      framebuffer_(make_framebuffer(vk, render_pass_, color_.view, depth_.view, extent)),
+      color_(create_target_image(vk, extent, kColorFormat,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                 VK_IMAGE_ASPECT_COLOR_BIT)),
+      depth_(create_target_image(vk, extent, vk.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                 VK_IMAGE_ASPECT_DEPTH_BIT)),
+      framebuffer_(make_framebuffer(vk, render_pass_, {color_.view, depth_.view}, extent)),
       slots_(vk) {}
 
 HeadlessTarget::~HeadlessTarget() { vkDeviceWaitIdle(vk_.device()); }

@@ -112,18 +112,18 @@ Image upload_font_atlas(const VulkanContext& vk, const unsigned char* rgba, uint
     const VkDeviceSize bytes = VkDeviceSize(width) * height * 4;
     Buffer staging = Buffer::host_visible(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     std::memcpy(staging.mapped(), rgba, size_t(bytes));
-    Image atlas = create_image_2d(vk, {width, height}, VK_FORMAT_R8G8B8A8_SRGB,
-                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    Image atlas = create_target_image(vk, {width, height}, VK_FORMAT_R8G8B8A8_SRGB,
+                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     vk.run_once([&](VkCommandBuffer cmd) {
-        image_barrier(cmd, atlas.image, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        target_barrier(cmd, atlas.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                       VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {width, height, 1};
         vkCmdCopyBufferToImage(cmd, staging.get(), atlas.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        image_barrier(cmd, atlas.image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+        target_barrier(cmd, atlas.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                       VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
     });
     return atlas;
 }
@@ -208,23 +208,11 @@ ImGuiRenderer::~ImGuiRenderer() = default;
 void ImGuiRenderer::make_overlay(VkExtent2D extent) {
     if (overlay_.image) VK_CHECK(vkDeviceWaitIdle(vk_.device()));  // frames in flight still read it (a resize: rare)
     overlay_framebuffer_ = {};
-    overlay_ = create_image_2d(vk_, extent, overlay_format_,
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                               VK_IMAGE_ASPECT_COLOR_BIT);
-    VkImageView view = overlay_.view;
-    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    info.renderPass = overlay_pass_;
-    info.attachmentCount = 1;
-    info.pAttachments = &view;
-    info.width = extent.width;
-    info.height = extent.height;
-    info.layers = 1;
-    VkFramebuffer framebuffer;
-    VK_CHECK(vkCreateFramebuffer(vk_.device(), &info, nullptr, &framebuffer));
-    VkDevice device = vk_.device();
-    overlay_framebuffer_ =
-        Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+    overlay_ = create_target_image(vk_, extent, overlay_format_,
+                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                   VK_IMAGE_ASPECT_COLOR_BIT);
+    overlay_framebuffer_ = make_framebuffer(vk_, overlay_pass_, {overlay_.view}, extent);
     write_image_descriptor(vk_, overlay_set_, 0, nearest_, overlay_.view);
     overlay_extent_ = extent;
     overlay_valid_ = false;
@@ -388,15 +376,14 @@ void ImGuiRenderer::copy_opaque(VkCommandBuffer cmd, VkImage target_image) const
     if (copies_.empty()) return;
     // The overlay is kept in the layout for sampling; for the copy it moves to the one for copying
     // from, and back (a frame's composite has read it; the next frame's may read it again).
-    image_barrier(cmd, overlay_.image, 0, 1, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, VK_ACCESS_TRANSFER_READ_BIT,
-                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT);
+    target_barrier(cmd, overlay_.image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0,
+                   VK_ACCESS_TRANSFER_READ_BIT,
+                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT);
     vkCmdCopyImage(cmd, overlay_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target_image,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(copies_.size()), copies_.data());
-    image_barrier(cmd, overlay_.image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    target_barrier(cmd, overlay_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0,
+                   VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
 }
 
 }  // namespace lab

@@ -258,19 +258,11 @@ bool WindowTarget::create_swapchain() {
     images_.resize(count);
     VK_CHECK(vkGetSwapchainImagesKHR(device, swapchain_, &count, images_.data()));
 
-    depth_ = create_image_2d(vk_, extent_, vk_.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                             VK_IMAGE_ASPECT_DEPTH_BIT);
+    depth_ = create_target_image(vk_, extent_, vk_.depth_format(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                 VK_IMAGE_ASPECT_DEPTH_BIT);
     for (VkImage image : images_) {
-        VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        view_info.image = image;
-        view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        view_info.format = surface_format_.format;
-        view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VkImageView view;
-        VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &view));
-        views_.emplace_back(view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
-
-        framebuffers_.push_back(make_framebuffer(vk_, render_pass_, view, depth_.view, extent_));
+        views_.push_back(create_target_view(vk_, image, surface_format_.format, VK_IMAGE_ASPECT_COLOR_BIT));
+        framebuffers_.push_back(make_framebuffer(vk_, render_pass_, {views_.back(), depth_.view}, extent_));
         render_finished_.push_back(make_semaphore(device));
     }
     return true;
@@ -353,9 +345,9 @@ void WindowTarget::end_frame(const AfterPass& after_pass) {
         // Copies done (the pass's own dependency ordered them after its colour writes): from
         // TRANSFER_DST_OPTIMAL to the layout presentation needs (it waits on the render-finished
         // semaphore, so no access to make visible).
-        image_barrier(cmd, image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                      VK_ACCESS_TRANSFER_WRITE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+        target_barrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                       VK_ACCESS_TRANSFER_WRITE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
     }
     VK_CHECK(vkEndCommandBuffer(cmd));
 

@@ -1,4 +1,4 @@
-// buffer.h — a VkBuffer with its own memory.
+// buffer.h — a VkBuffer with its own memory (and Image, the same for an image and its view).
 //
 // Two kinds are enough for the labs:
 //  - host-visible buffers, mapped once for their whole life (uniforms, storage
@@ -40,8 +40,8 @@ private:
     void* mapped_ = nullptr;
 };
 
-// An image with its memory and one view (render targets, textures).
-// Destroyed in reverse order: view, image, then the memory bound to the image.
+// An image with its memory and one view. Destroyed in reverse order: view, image, then the memory
+// bound to the image. (Creating one: render_target.h for the targets' own images; lab 3 teaches it.)
 struct Image {
     Allocation memory;
     Handle<VkImage> image;
@@ -51,21 +51,5 @@ struct Image {
     Image(Image&&) noexcept = default;
     Image& operator=(Image&& other) noexcept;  // destroys the old image in the right order first
 };
-
-// A layout transition of the colour mip levels [base, base + count) of `image`, with the memory
-// dependency from `src_access` in `src_stage` to `dst_access` in `dst_stage`.
-void image_barrier(VkCommandBuffer cmd, VkImage image, uint32_t base, uint32_t count, VkImageLayout from,
-                   VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-                   VkPipelineStageFlags dst_stage);
-
-// `mip_levels` levels; the view covers all of them.
-Image create_image_2d(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                      VkImageAspectFlags aspect, uint32_t mip_levels = 1);
-// A cube map: six square layers of `size`² (+X, −X, +Y, −Y, +Z, −Z), the view a cube view.
-Image create_image_cube(const VulkanContext& vk, uint32_t size, VkFormat format, VkImageUsageFlags usage,
-                        VkImageAspectFlags aspect);
-// A 2D view of one layer of `image` (e.g. a cube face to render into).
-Handle<VkImageView> create_layer_view(const VulkanContext& vk, VkImage image, VkFormat format, VkImageAspectFlags aspect,
-                                      uint32_t layer);
 
 }  // namespace lab

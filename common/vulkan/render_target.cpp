@@ -70,13 +70,12 @@ Handle<VkRenderPass> create_render_pass(const VulkanContext& vk, uint32_t attach
     return Handle<VkRenderPass>(pass, [device](VkRenderPass p) { vkDestroyRenderPass(device, p, nullptr); });
 }
 
-Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pass, VkImageView color,
-                                       VkImageView depth, VkExtent2D extent) {
-    VkImageView views[2] = {color, depth};
+Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pass,
+                                       std::initializer_list<VkImageView> views, VkExtent2D extent) {
     VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     info.renderPass = pass;
-    info.attachmentCount = 2;
-    info.pAttachments = views;
+    info.attachmentCount = uint32_t(views.size());
+    info.pAttachments = views.begin();
     info.width = extent.width;
     info.height = extent.height;
     info.layers = 1;
@@ -84,6 +83,44 @@ Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pas
     VK_CHECK(vkCreateFramebuffer(vk.device(), &info, nullptr, &framebuffer));
     VkDevice device = vk.device();
     return Handle<VkFramebuffer>(framebuffer, [device](VkFramebuffer f) { vkDestroyFramebuffer(device, f, nullptr); });
+}
+
+Image create_target_image(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                          VkImageAspectFlags aspect) {
+    // 2D, one level, one layer, one sample, optimal tiling, exclusive, contents undefined.
+    const VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, nullptr, 0, VK_IMAGE_TYPE_2D, format,
+                                 {extent.width, extent.height, 1}, 1, 1, VK_SAMPLE_COUNT_1_BIT,
+                                 VK_IMAGE_TILING_OPTIMAL, usage, VK_SHARING_MODE_EXCLUSIVE, 0, nullptr,
+                                 VK_IMAGE_LAYOUT_UNDEFINED};
+    VkDevice device = vk.device();
+    VkImage image;
+    VK_CHECK(vkCreateImage(device, &info, nullptr, &image));
+    Image result;
+    result.image = Handle<VkImage>(image, [device](VkImage i) { vkDestroyImage(device, i, nullptr); });
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(device, image, &req);
+    result.memory = vk.allocator().allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, /*image=*/true);
+    VK_CHECK(vkBindImageMemory(device, image, result.memory.memory(), result.memory.offset()));
+    result.view = create_target_view(vk, image, format, aspect);
+    return result;
+}
+
+Handle<VkImageView> create_target_view(const VulkanContext& vk, VkImage image, VkFormat format,
+                                       VkImageAspectFlags aspect) {
+    const VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, nullptr, 0, image, VK_IMAGE_VIEW_TYPE_2D,
+                                     format, {}, {aspect, 0, 1, 0, 1}};
+    VkDevice device = vk.device();
+    VkImageView view;
+    VK_CHECK(vkCreateImageView(device, &info, nullptr, &view));
+    return Handle<VkImageView>(view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
+}
+
+void target_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
+                    VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
+    const VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER, nullptr, src_access, dst_access, from, to,
+                                       VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, image,
+                                       {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
 }
 
 FrameSlots::FrameSlots(const VulkanContext& vk) : vk_(vk) {

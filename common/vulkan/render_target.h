@@ -13,6 +13,7 @@
 
 #include <array>
 #include <functional>
+#include <initializer_list>
 
 namespace lab {
 
@@ -57,9 +58,23 @@ Handle<VkRenderPass> create_render_pass(const VulkanContext& vk, uint32_t attach
                                         const VkAttachmentDescription* attachments, const VkSubpassDescription& subpass,
                                         const VkSubpassDependency (&dependencies)[2]);
 
-// A framebuffer for `pass` over a colour and a depth view.
-Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pass, VkImageView color,
-                                       VkImageView depth, VkExtent2D extent);
+// A framebuffer for `pass` over `views` (in the pass's attachment order): a target's colour and
+// depth, the UI overlay's colour.
+Handle<VkFramebuffer> make_framebuffer(const VulkanContext& vk, VkRenderPass pass,
+                                       std::initializer_list<VkImageView> views, VkExtent2D extent);
+
+// The images the targets and the UI make for themselves (depth buffers, the headless colour image,
+// the UI's overlay and font atlas): one level, one layer, device-local, with a 2D view of
+// `aspect`. (Lab 3 teaches image creation with mip levels; lab 4 cube maps.)
+Image create_target_image(const VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                          VkImageAspectFlags aspect);
+// A 2D view of the one level and layer of `image` (also a swapchain's images).
+Handle<VkImageView> create_target_view(const VulkanContext& vk, VkImage image, VkFormat format,
+                                       VkImageAspectFlags aspect);
+// A layout change of a one-level colour image, with its memory dependency (UI uploads and copies,
+// a window's image before presenting).
+void target_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
+                    VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage);
 
 class FrameSlots {
 public:
