@@ -16,6 +16,7 @@
 #include "textures_panel.h"
 
 #include "lab_app.h"
+#include "run_lab.h"
 #include "scene_reloader.h"
 
 #include <GLFW/glfw3.h>

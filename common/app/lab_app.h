@@ -1,16 +1,7 @@
 // lab_app.h — the frame loop every lab shares: window or headless, input, UI, PNG.
 //
-// A lab's main() is:
-//     return lab::run_lab(argc, argv, info, [](lab::LabApp& app, const lab::Scene& scene) {
-//         ... create the lab's renderer ...
-//         lab::LabApp::Callbacks frame;
-//         frame.update = [&](float dt) { ... };
-//         frame.record = [&](const lab::Frame& f) { ... };
-//         ...
-//         app.run(frame);
-//     });
-// run_lab() turns every failure into one line on stderr and an exit code:
-// 0 success, 1 Vulkan/system failure or validation messages, 2 bad input.
+// A lab's body (run_lab.h starts it) creates its renderer, fills LabApp::Callbacks and calls
+// app.run(frame).
 #pragma once
 
 #include "cli.h"
@@ -111,8 +102,5 @@ private:
     bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
     bool redraw_requested_ = false;
 };
-
-int run_lab(int argc, char** argv, const LabInfo& info,
-            const std::function<void(LabApp& app, const Scene& scene)>& body);
 
 }  // namespace lab
