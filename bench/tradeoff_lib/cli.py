@@ -47,6 +47,7 @@ def parse_args(argv=None):
                                     "then --replot on the concatenated CSV)")
     args = ap.parse_args(argv)
     args.build = os.path.abspath(args.build)
+    args.rounds_given = args.rounds is not None
     if args.frames is None:
         args.frames = knobs.frames(args.lab, args.quick)
     if args.rounds is None:
@@ -76,9 +77,12 @@ def replot(lab, csv_path, png_path, note, quick):
     rows = read_rows(csv_path)
     configs = [from_row(row, known) for row in rows]
     mark_front(configs, knobs.KNOBS[lab]["groups"], knobs.error_key(lab))
+    changed = False
     for row, c in zip(rows, configs):
+        changed |= (row["on_front"], row["dominated_by"]) != (c["on_front"], c["dominated_by"])
         row["on_front"], row["dominated_by"] = c["on_front"], c["dominated_by"]
-    write_rows(csv_path, rows)
+    if changed:  # else the CSV stays byte for byte as measured
+        write_rows(csv_path, rows)
     plot(lab, configs, png_path, note)
 
 
@@ -99,6 +103,10 @@ def main(argv=None):
     os.makedirs(args.out_dir, exist_ok=True)
     csv_path = os.path.join(args.out_dir, lab + ".csv")
     png_path = os.path.join(args.out_dir, lab + ".png")
+    if args.replot and not args.rounds_given:  # the note names the rounds the CSV was measured in
+        rounds = {row["rounds"] for row in read_rows(csv_path)}
+        if len(rounds) == 1:
+            args.rounds = int(rounds.pop())
     note = title_note(lab, args)
     if args.replot:
         replot(lab, csv_path, png_path, note, args.quick)

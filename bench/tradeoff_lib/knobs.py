@@ -206,7 +206,8 @@ def lab4_configs(quick):
 
 
 # Per lab: configs, the function above; groups, how each group is drawn ("front": a Pareto front,
-# "label_all": every point labelled); truth, lab_reference's options for the truth (default
+# "label_all": every point labelled, "knob": what its series vary, named on a plot that has too many
+# series to label every point); truth, lab_reference's options for the truth (default
 # --ideal; "shadow": the ray-traced shadows and lab_compare's shadow metric with a band of `band`
 # px); truth_name, how the plots name it; order, (better, worse) pairs of configurations whose
 # error the quick check compares; error, the figure the front and the plots use (default mean_abs)
@@ -222,9 +223,10 @@ KNOBS = {
                       "truth": ["--supersample", "16"], "truth_name": "16x16 supersampled",
                       "order": [("trilinear", "nearest")]},
     "lab4_shadows": {"configs": lab4_configs,
-                     "groups": {"default scene": {"front": True}, "grazing stress": {"front": True}},
+                     "groups": {"default scene": {"front": True, "knob": "shadow map size"},
+                                "grazing stress": {"front": True, "knob": "shadow map size"}},
                      "truth": "shadow", "truth_name": "ray-traced shadows", "error": "shadow_mae",
-                     "error_label": "shadow MAE over the receivers vs ray-traced shadows (1/255)",
+                     "error_label": "shadow MAE on receivers vs ray-traced (1/255)",
                      "band": 4, "time_args": ["--dev-animate-lights"], "size": (640, 360), "frames": 16},
 }
 

@@ -4,12 +4,24 @@ One figure per lab, LAB.png: one panel per group. A group with a front gets CPU 
 error on log axes with its Pareto front (and, when it has single-primitive variants, a second
 panel zoomed around its default where they are labelled); lab 3's sampler group labels every
 point; lab 2's light count and lighting models get a cost curve and bars.
+
+Readable where it is shown: the course site draws a plot about 900 px wide, so the panels go two
+to a row (not all in one row), the figure is 14 in wide at 120 dpi (1680 px) and the smallest text
+is 11 pt (about 10 px on the page). Only what the reader needs is written on the points: a group
+with many series (lab 4's eight filters) names its knob once in a corner instead of at every point.
 """
+import math
 import statistics
+import textwrap
 
 from .knobs import KNOBS, error_key, error_label
 
 CPU_LABEL = "CPU time per frame (ms, all threads, log)"
+WIDTH_IN, PANEL_HEIGHT_IN, DPI = 14.0, 6.0, 120
+STYLE = {"font.size": 13, "axes.titlesize": 15, "axes.labelsize": 13, "xtick.labelsize": 12,
+         "ytick.labelsize": 12, "legend.fontsize": 11, "figure.titlesize": 16}
+SMALL = 11  # annotations: the smallest text in a plot
+MANY_SERIES = 3  # more series than this: no knob value at every point
 
 
 def panels(lab, configs):
@@ -37,36 +49,87 @@ def plot(lab, configs, path, title_note):
     import matplotlib.pyplot as plt
 
     todo = panels(lab, configs)
-    ratios = [1.5 if kind in ("front", "zoom") else 2.0 if kind == "labelled" else 1.0 for _, _, kind in todo]
-    fig, axes = plt.subplots(1, len(todo), figsize=(5.6 * sum(ratios), 5.6), squeeze=False,
-                             gridspec_kw={"width_ratios": ratios})
+    columns = 1 if len(todo) == 1 else 2
+    rows = math.ceil(len(todo) / columns)
+    with plt.rc_context(STYLE):
+        fig, axes = plt.subplots(rows, columns, figsize=(WIDTH_IN, PANEL_HEIGHT_IN * rows + 1.2), squeeze=False)
+        for ax in axes.flat[len(todo):]:
+            ax.set_visible(False)
+        legend = draw_panels(lab, todo, axes.flat)
+        height = PANEL_HEIGHT_IN * rows + 1.2
+        note = textwrap.fill(title_note, 120)
+        fig.suptitle(f"{lab}: time against error", y=0.995)
+        fig.text(0.5, 1 - 0.45 / height, note, ha="center", va="top", fontsize=SMALL, color="0.25")
+        bottom = 0.0
+        if legend:  # many series: one legend for the figure, under the panels, not over the points
+            handles, labels = legend.get_legend_handles_labels()
+            fig.legend(handles, labels, loc="lower center", ncol=5, frameon=False)
+            bottom = (0.2 + 0.35 * math.ceil(len(labels) / 5)) / height
+        fig.tight_layout(rect=(0, bottom, 1, 1 - (0.6 + 0.2 * note.count("\n")) / height))
+        for ax in axes.flat:  # once the panels have their final size and limits
+            spread_labels(ax)
+        fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def draw_panels(lab, todo, axes):
+    """Draws every panel; returns the axes whose legend the figure shows (groups with many
+    series), or None when each panel has its own."""
     key = error_key(lab)
-    for ax, (group, cs, kind) in zip(axes[0], todo):
+    figure_legend = None
+    for ax, (group, cs, kind) in zip(axes, todo):
         if kind == "count":
             plot_count(ax, group, cs, key)
         elif kind == "bars":
             plot_bars(ax, group, cs, key)
         else:
-            plot_front(ax, group, cs, kind, key, error_label(lab))
+            many = plot_front(ax, group, cs, kind, key, error_label(lab),
+                              KNOBS[lab]["groups"].get(group, {}).get("knob", "knob"))
+            if many and figure_legend is None:
+                figure_legend = ax
         if kind == "labelled":
-            plain_log_axes(ax)
             ax.set_ylabel(f"mean |error| vs {KNOBS[lab].get('truth_name', 'ideal')} (1/255, log)")
-    fig.suptitle(f"{lab}: time against error\n{title_note}", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
+        if kind in ("front", "zoom", "labelled"):
+            plain_log_axes(ax)
+    return figure_legend
+
+
+def annotate(ax, text, xy, dx=6, dy=5, **kw):
+    """A label next to a data point, on the side with room (left of a point in the right third
+    of the panel), left out of the layout so that a long label never shrinks the panel."""
+    x_axes = ax.transAxes.inverted().transform(ax.transData.transform(xy))[0]
+    if x_axes > 0.66:
+        dx, kw["ha"] = -abs(dx), "right"
+    label = ax.annotate(text, xy, textcoords="offset points", xytext=(dx, dy), fontsize=kw.pop("fontsize", SMALL), **kw)
+    label.set_in_layout(False)
+    return label
 
 
 def plain_log_axes(ax):
-    """Plain numbers (not powers of ten) on both log axes, minor ticks labelled too."""
-    from matplotlib.ticker import ScalarFormatter
+    """Plain numbers (20, 30, 0.5; not 2×10¹) on both log axes. Minor ticks are labelled only
+    where an axis spans at most two decades, and then only 2, 3 and 5 where it spans more
+    than half a decade: more labels would run into each other."""
+    from matplotlib.ticker import FuncFormatter
+
+    def plain(v, _pos=None):
+        return f"{v:g}"
+
     for axis in (ax.xaxis, ax.yaxis):
-        axis.set_major_formatter(ScalarFormatter())
-        axis.set_minor_formatter(ScalarFormatter())
-    ax.tick_params(which="minor", labelsize=7)
+        axis.set_major_formatter(FuncFormatter(plain))
+
+        def minor(v, _pos=None, axis=axis):
+            lo, hi = sorted(axis.get_view_interval())  # at drawing time: the final limits
+            decades = math.log10(hi / lo) if lo > 0 else 99
+            if decades > 2.0:
+                return ""
+            mantissa = round(v / 10 ** math.floor(math.log10(v) + 1e-9), 6)
+            return plain(v) if decades <= 0.6 or mantissa in (2, 3, 5) else ""
+
+        axis.set_minor_formatter(FuncFormatter(minor))
+    ax.tick_params(which="minor", labelsize=SMALL)
 
 
-def plot_front(ax, group, cs, kind, key, ylabel):
+def plot_front(ax, group, cs, kind, key, ylabel, knob="knob"):
     """CPU time against error: the series as lines, the rest as crosses, the front as a step,
     the default circled. kind: "front", "zoom" (around the default) or "labelled"."""
     markers = {"flat": "s", "gouraud": "^", "phong": "o", "all": "o"}
@@ -91,10 +154,15 @@ def plot_front(ax, group, cs, kind, key, ylabel):
         if c["default"]:
             ax.scatter([c["cpu_ms"]], [c["errors"][key]], s=170, facecolors="none", edgecolors="red",
                        linewidths=1.6, zorder=4)
+    series = [s for s in dict.fromkeys(c["series"] for c in cs) if s]
     if kind == "labelled":
         label_clusters(ax, cs, key)
     else:
-        label_points(ax, cs, kind, key)
+        label_points(ax, cs, kind, key, len(series))
+    if len(series) > MANY_SERIES and kind == "front":
+        knobs = sorted({c["knob"] for c in cs if c["series"]})
+        ax.text(0.02, 0.02, f"along each line: {knob} {knobs[0]} to {knobs[-1]}",
+                transform=ax.transAxes, fontsize=SMALL, color="0.25")
     ax.set_xscale("log")
     ax.set_yscale("log")
     if kind == "zoom":
@@ -105,7 +173,11 @@ def plot_front(ax, group, cs, kind, key, ylabel):
     ax.set_xlabel(CPU_LABEL)
     ax.set_ylabel(ylabel)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="upper right")
+    many = len(series) > MANY_SERIES
+    if kind != "zoom" and not many:  # the zoomed panel has the same lines as the one before it
+        ax.legend(loc="best")
+    return many
+
 
 
 def point_label(c):
@@ -113,20 +185,43 @@ def point_label(c):
     text = str(c["knob"]) if c["series"] else c["config"]
     if c["default"]:
         text = f"{c['config']} (default)"
-    if c["seed"]:
-        text += f" = {c['seed']}"
+    if c["seed"]:  # the seed's own configuration is named in the legend
+        text = c["seed"] if text.startswith("seed") else f"{text} = {c['seed']}"
     return text
 
 
-def label_points(ax, cs, kind, key):
-    """Labels the points (those off the series only in the zoomed panel)."""
+def label_points(ax, cs, kind, key, n_series):
+    """Labels the points: those off the series only in the zoomed panel; a series' knob values
+    at every point when it is the only one, at its two ends when there are a few, and not at all
+    when there are many (the corner note names the knob); the default and the seeds always."""
+    ends = {}
     for c in cs:
-        if not c["series"] and kind == "front":
-            continue  # labelled in the zoomed panel
+        if c["series"]:
+            ends.setdefault(c["series"], []).append(c["knob"])
+    for c in cs:
         special = c["default"] or c["seed"]
-        ax.annotate(point_label(c), (c["cpu_ms"], c["errors"][key]), textcoords="offset points", xytext=(5, 4),
-                    fontsize=8 if special else 7, fontweight="bold" if c["default"] else "normal",
-                    color="darkred" if special else "black")
+        if not c["series"] and kind == "front" and not special:
+            continue  # labelled in the zoomed panel
+        if c["series"] and not special and (n_series > MANY_SERIES or (
+                n_series > 1 and c["knob"] not in (min(ends[c["series"]]), max(ends[c["series"]])))):
+            continue
+        annotate(ax, point_label(c), (c["cpu_ms"], c["errors"][key]),
+                 fontweight="bold" if c["default"] else "normal", color="darkred" if special else "black")
+
+
+def spread_labels(ax, tries=8):
+    """Moves a label down, a line at a time, while it covers one placed before it (from the top)."""
+    renderer = ax.figure.canvas.get_renderer()
+    labels = sorted((t for t in ax.texts if hasattr(t, "xyann")), key=lambda t: -t.get_window_extent(renderer).y0)
+    placed = []
+    for label in labels:
+        for _ in range(tries):
+            box = label.get_window_extent(renderer)
+            if not any(box.overlaps(other) for other in placed):
+                break
+            x, y = label.xyann
+            label.xyann = (x, y - box.height * 72 / ax.figure.dpi - 1)
+        placed.append(label.get_window_extent(renderer))
 
 
 def zoom_on_default(ax, cs, key):
@@ -159,7 +254,7 @@ def label_clusters(ax, cs, key):
         special = any(c["default"] or c["seed"] for c in cl)
         x = statistics.median(c["cpu_ms"] for c in cl)
         ax.annotate("\n".join(full_name(c) for c in cl), (x, cl[0]["errors"][key]), textcoords="offset points",
-                    xytext=(-8, 8), ha="right", fontsize=8, color="darkred" if special else "black")
+                    xytext=(-8, 8), ha="right", fontsize=SMALL, color="darkred" if special else "black")
 
 
 def plot_count(ax, group, cs, key):
@@ -172,15 +267,15 @@ def plot_count(ax, group, cs, key):
     ax.plot(xs, [last["cpu_ms"] * x / last["knob"] for x in xs], ":", color="0.5", label="∝ lights")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(loc="upper left")
     ax.set_xticks(xs)
     ax.set_xticklabels([str(x) for x in xs])
     ax.set_xlabel("lights (directional, point, spot in turn)")
     ax.set_ylabel(CPU_LABEL)
     for c in cs:
-        ax.annotate(f"{c['cpu_ms']:.0f} ms\nerr {c['errors'][key]:.2f}", (c["knob"], c["cpu_ms"]),
-                    textcoords="offset points", xytext=(-10, 8), fontsize=7, color="0.25")
-    ax.set_title(f"{group}\n(error vs each count's own ideal)")
+        ax.annotate(f"{c['cpu_ms']:.0f} ms", (c["knob"], c["cpu_ms"]),
+                    textcoords="offset points", xytext=(-12, 8), ha="right", fontsize=SMALL, color="0.25")
+    ax.set_title(f"{group}: cost per frame")
     ax.grid(True, alpha=0.3)
 
 
@@ -190,12 +285,12 @@ def plot_bars(ax, group, cs, key):
     ax.barh(ys, [c["cpu_ms"] for c in cs], xerr=[c["cpu_spread_ms"] / 2 for c in cs],
             color=["tab:red" if c["default"] else "tab:blue" for c in cs], alpha=0.75, capsize=2)
     ax.set_yticks(ys)
-    ax.set_yticklabels([full_name(c) for c in cs], fontsize=8)
+    ax.set_yticklabels([full_name(c) for c in cs])
     ax.invert_yaxis()
     for y, c in zip(ys, cs):
         ax.annotate(f" {c['cpu_ms']:.1f} ms, err {c['errors'][key]:.2f}", (c["cpu_ms"] + c["cpu_spread_ms"] / 2, y),
-                    va="center", fontsize=7)
+                    va="center", fontsize=SMALL)
     ax.set_xlabel("CPU time per frame (ms, all threads)")
     ax.set_title(f"{group} (equal scene;\nerror vs each model's own ideal)")
     ax.grid(True, axis="x", alpha=0.3)
-    ax.set_xlim(0, max(c["cpu_ms"] for c in cs) * 1.45)
+    ax.set_xlim(0, max(c["cpu_ms"] for c in cs) * 1.6)
