@@ -6,7 +6,8 @@
 #   bash scripts/run.sh                     # the newest lab
 #   bash scripts/run.sh lab1                # lab 1 (also: 1, lab1_camera)
 #   bash scripts/run.sh 2 --scene scenes/lab2_one_light.json --validate
-#   bash scripts/run.sh site [OUT]          # the course site (scripts/make_site.sh) into OUT (build/site)
+#   bash scripts/run.sh site [--student N] [OUT]   # the course site (scripts/make_site.sh) into OUT (build/site;
+#                                           # --student N: lab N's student edition, build/site-student-labN)
 #
 # Everything after the lab goes to the lab unchanged (see `--help` of any lab).
 set -euo pipefail
@@ -17,9 +18,18 @@ build="${LAB_BUILD_DIR:-$root/build}"
 
 # The course site: packages and site/node_modules (no C++ build needed), the site, where to open it.
 if [ "${1:-}" = site ]; then
-  out="$(realpath -m "${2:-$root/build/site}")"
+  shift
+  student=()
+  if [ "${1:-}" = --student ]; then
+    [ $# -ge 2 ] || { echo "run: site --student needs a lab (1..4)" >&2; exit 2; }
+    student=(--student "$2")
+    shift 2
+  fi
+  n="${student[1]:-}"
+  n="${n#lab}"
+  out="$(realpath -m -- "${1:-$root/build/site${n:+-student-lab${n%%_*}}}")"
   bash "$root/scripts/setup.sh" --no-build
-  bash "$root/scripts/make_site.sh" "$out"
+  bash "$root/scripts/make_site.sh" "${student[@]}" "$out"
   echo "run: open file://$out/index.html in a browser (it needs no network),"
   echo "run: or serve it: python3 -m http.server --directory $out 8000   (then http://localhost:8000/)"
   exit 0
