@@ -21,6 +21,7 @@
 # differently): it checks that the reading guide and the list of files match the manifest, and
 # that applying each committed diff to the earlier lab in a temporary folder gives the later lab.
 set -euo pipefail
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 manifest=docs/diffs/lessons.md
