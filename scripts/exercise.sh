@@ -239,7 +239,8 @@ known_answers=(
 # lines: 16 or more non-space characters. Shorter lines (braces, `return 1.0;`, `} else {`,
 # `float d = 0.0;` is 12) are everywhere in the project and say nothing about the answer, while
 # a line of 16 is already specific (`vec3 H = normalize(L + V);` is 22). A line that is also one
-# of the exercise's STUB lines is no answer: the copy has it on purpose. Nor is boilerplate: a line
+# of the exercise's STUB lines, or part of one (a function's signature the stub keeps), is no
+# answer: the copy has it on purpose. Nor is boilerplate: a line
 # the project's own code also holds outside every exercise (common/, and the labs' files with their
 # exercises cut), such as `for (int i = 0; i < 3; ++i) {` or a render pass's dependency field that
 # common/ sets the same way. Trailing // comments are left out of both sides.
@@ -258,8 +259,9 @@ solution_lines() {
         { code[++n] = bare($0); where[n] = FILENAME ":" FNR }
         END {
           for (i = 1; i <= n; i++)
-            if (length(code[i]) >= 16 && !(code[i] in stub)) printf "%s\037%s\037%s\n", name, where[i], code[i]
-        }' "$file"
+            if (length(code[i]) >= 16 && !in_stub(code[i])) printf "%s\037%s\037%s\n", name, where[i], code[i]
+        }
+        function in_stub(c,   t) { for (t in stub) if (index(t, c)) return 1; return 0 }' "$file"
     done
   done | awk -F '\037' '
     FNR == NR { boilerplate[$0] = 1; next }  # boilerplate_lines, below
