@@ -373,10 +373,12 @@ check_copy() {
   echo "check-copy: $dir: no later lab, $(exercises_of "$lab" | wc -l) exercises cut out, no answers but the known ones"
 }
 
-# --check-copies (CTest: student_copy_no_answers): writes a copy of every lab that has exercises
-# into a temporary folder (no build: seconds) and checks it.
-check_copies() {
-  local tmp l failed=0 count=0
+# Writes a copy of every lab that has exercises into a temporary folder (no build: seconds) and
+# runs CHECK DIR LAB on each; exit 1 if a check fails, 77 inside a student copy (copies are
+# written from the complete project). --check-copies (CTest: student_copy_no_answers) runs
+# check_copy; --check-copy-links (CTest: student_copy_links) runs copy_links.
+for_each_copy() {
+  local check="$1" tmp l failed=0 count=0
   if [ -f .student-copy ]; then
     echo "exercise: this is a student copy ($(head -n 1 .student-copy)): copies are written from the complete project (skipped)"
     exit 77
@@ -387,29 +389,16 @@ check_copies() {
     [ -n "$(exercises_of "$l")" ] || continue
     count=$((count + 1))
     bash "$root/scripts/exercise.sh" "$l" --out "$tmp/$l" >/dev/null || { echo "FAIL exercise.sh $l did not write a copy"; failed=1; continue; }
-    check_copy "$tmp/$l" "$l" || failed=1
+    "$check" "$tmp/$l" "$l" || failed=1
   done
   ((count)) || { echo "FAIL no lab has exercises: nothing checked"; exit 1; }
   exit "$failed"
 }
 
-# --check-copy-links (CTest: student_copy_links): writes a copy of every lab and checks that every
-# relative link and #anchor of its Markdown files resolves (scripts/check_links.py): the copy
-# leaves docs/diffs/ and the later labs out, and its links to them must have become plain text.
-check_copy_links() {
-  local tmp l failed=0
-  if [ -f .student-copy ]; then
-    echo "exercise: this is a student copy ($(head -n 1 .student-copy)): copies are written from the complete project (skipped)"
-    exit 77
-  fi
-  tmp=$(mktemp -d)
-  trap 'rm -rf "$tmp"' EXIT
-  for l in "${labs[@]}"; do
-    [ -n "$(exercises_of "$l")" ] || continue
-    bash "$root/scripts/exercise.sh" "$l" --out "$tmp/$l" >/dev/null || { echo "FAIL exercise.sh $l did not write a copy"; failed=1; continue; }
-    python3 "$root/scripts/check_links.py" "$tmp/$l" | sed "s|^|$l copy: |" || failed=1
-  done
-  exit "$failed"
+# Every relative link and #anchor of the copy's Markdown files resolves (scripts/check_links.py):
+# the copy leaves docs/diffs/ and the later labs out, and its links to them must have become text.
+copy_links() {
+  python3 "$root/scripts/check_links.py" "$1" | sed "s|^|$2 copy: |"
 }
 
 # --prove BUILD LAB (the CTest test grader_labN): the grader really grades, and names the real
@@ -605,11 +594,11 @@ case "${1:-}" in
     ;;
   --check-copies)
     [ $# -eq 1 ] || die "usage: exercise.sh --check-copies"
-    check_copies
+    for_each_copy check_copy
     ;;
   --check-copy-links)
     [ $# -eq 1 ] || die "usage: exercise.sh --check-copy-links"
-    check_copy_links
+    for_each_copy copy_links
     ;;
   --prove)
     [ $# -eq 3 ] || die "usage: exercise.sh --prove BUILD_DIR LAB"
