@@ -24,7 +24,7 @@
 // pages chain lab 1 → lab N and back; every file of every lab folder and its shader folder has a
 // page (src/<path>.html) that the lab's page links. The instructors' edition: every README and doc
 // of the repository has a page. A student edition of lab N: no page, link or picture names a later
-// lab, and docs/solutions.md has no page. A full-page screenshot of each instructors' page other
+// lab (nor does its text outside code), and docs/solutions.md has no page. A full-page screenshot of each instructors' page other
 // than src/ (file://) goes to the shots folder. LAB_CHROMIUM=/path picks another Chromium (default
 // /usr/bin/chromium). Exit codes: 0 pass, 1 fail, 77 skipped (CTest SKIP_RETURN_CODE) when
 // site/node_modules or Chromium is missing or Chromium cannot start here — always with one line
@@ -168,7 +168,7 @@ async function visit(edition) {
           rawMath: [...prose.values()].map((t) => t.match(/\$\$[^$]+\$\$|\$[^$\s][^$]*\$/)?.[0]).find(Boolean) ?? null,
           katex: document.querySelectorAll('.katex').length,
           katexErrors: document.querySelectorAll('.katex-error').length,
-          text: document.body.innerText,
+          prose: [...prose.values()].join('\n'),  // the page's own words: a lab's code may name the next lab in a comment
           lessonFiles: [...document.querySelectorAll('section.lesson-file')].map((s) => ({
             path: s.dataset.path,
             guide: s.querySelector('.guide')?.textContent.trim() ?? '',
@@ -237,8 +237,8 @@ for (const edition of editions) {
       }
     }
     if (student) {
-      const later = [...dom.text.matchAll(/\blab[ _]?(\d+)/gi)].find((m) => Number(m[1]) > student);
-      if (later) fail(name, `names a later lab in its text: "${dom.text.slice(Math.max(0, later.index - 60), later.index + 30).replace(/\s+/g, ' ')}"`);
+      const later = [...dom.prose.matchAll(/\blab[ _]?(\d+)/gi)].find((m) => Number(m[1]) > student);
+      if (later) fail(name, `names a later lab in its text: "${dom.prose.slice(Math.max(0, later.index - 60), later.index + 30).replace(/\s+/g, ' ')}"`);
     }
   }
   for (const p of pagesJson) {
