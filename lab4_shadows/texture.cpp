@@ -25,7 +25,7 @@ uint8_t linear_to_srgb(double c) {
 // decodes them through the sRGB curve before filtering (the spec's "sRGB EOTF"), a _UNORM one
 // divides by 255. The bytes are the same; only their meaning differs.
 VkFormat format_of(TexelEncoding encoding) {
-    // EXERCISE texel_format: which VkFormat does a colour map (its bytes sRGB-encoded, as image files store them) get, and which a data map such as specular (its bytes are plain numbers)? Read texture.h's header comment, docs/lighting.md on colour spaces, the Vulkan spec's "Conversion to RGBA" (sRGB). Wrong: textured surfaces look washed out and too bright, their mip levels too light. Checked by Lab3Render.AlbedoImageTimesColour, Lab3Render.AlbedoMapMagnified.
+    // EXERCISE texel_format: which VkFormat does a colour map (its bytes sRGB-encoded, as image files store them) get, and which a data map such as specular (its bytes are plain numbers)? Read texture.h's header comment, docs/lighting.md on colour spaces, the Vulkan spec's "Conversion to RGBA" (sRGB). Wrong: textured surfaces look washed out and too bright, their mip levels too light. Checked by TexelFormat.*, Lab3Render.AlbedoImageTimesColour, Lab3Render.AlbedoMapMagnified.
     // STUB: return VK_FORMAT_R8G8B8A8_UNORM;  // every map read as plain numbers
     return encoding == TexelEncoding::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
     // END EXERCISE

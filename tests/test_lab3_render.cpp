@@ -276,6 +276,62 @@ TEST(Lab3Render, NearestFilterWithUvScaleAndOffset) {
                    "nearest", true);
 }
 
+// --- the shader's map terms on their own ------------------------------------------------------
+// Each of these pictures checks one exercise of lit.frag and nothing of the C++ side: its maps'
+// bytes are 0 or 255 (an sRGB byte of 0 or 255 decodes to 0 or 1, as a UNORM byte does: the ends
+// of the curve, so the image's format plays no part) and its sampler is Vulkan's all-zero
+// VkSamplerCreateInfo (nearest, repeat, level 0 only: no mip chain, no filter choice).
+
+// An 8×8 map of the eight colours whose channels are 0 or 255, in a pattern that is neither
+// symmetric nor periodic across the map, written to test_output/lab3/FILE.
+std::string binary_map(const std::string& file, int salt) {
+    lab::Image8 im{8, 8, {}};
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const int bits = (x * 5 + y * 3 + x * y + salt) % 8;
+            im.rgba.insert(im.rgba.end(), {uint8_t(bits & 1 ? 255 : 0), uint8_t(bits & 2 ? 255 : 0), uint8_t(bits & 4 ? 255 : 0), 255});
+        }
+    const std::string path = kLab.make_path(file);
+    lab::write_png(path, im);
+    return path;
+}
+// A data map (specular factors: plain numbers, whatever format colour maps get), 8×8 greys.
+std::string data_map(const std::string& file) {
+    lab::Image8 im{8, 8, {}};
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const auto v = uint8_t((x * 37 + y * 91) % 256);
+            im.rgba.insert(im.rgba.end(), {v, v, v, 255});
+        }
+    const std::string path = kLab.make_path(file);
+    lab::write_png(path, im);
+    return path;
+}
+const std::string kPlainSampler = R"("sampler": {"filter": "nearest", "mipmaps": "none", "wrap": "repeat", "anisotropy": 1})";
+
+// albedo × A, specular × S, emissive + strength · E, at the mesh's own UVs (scale 1, offset 0).
+TEST(Lab3PlainSampler, MapTermsAtTheMeshUv) {
+    expect_matches(plane_scene("plain_terms", R"({"albedo": [0.9, 0.7, 0.5], "albedo_map": ")" + binary_map("plain_terms_albedo.png", 0) +
+                                                  R"(", "specular": [1, 1, 1], "shininess": 8, "specular_map": ")" +
+                                                  data_map("plain_terms_specular.png") + R"(", "emissive": [0.05, 0, 0], "emissive_map": ")" +
+                                                  binary_map("plain_terms_emissive.png", 3) + R"(", "emissive_strength": 0.5, )" +
+                                                  kPlainSampler + "}",
+                                   R"([{"type": "point", "position": [0.3, 0.8, 0.2], "intensity": 1.5}])"),
+                   "plain_terms", true);
+}
+// The map tiled 2.5 × 1.5 times and shifted.
+TEST(Lab3PlainSampler, UvScaleAndOffset) {
+    expect_matches(plane_scene("plain_uv", R"({"albedo_map": ")" + binary_map("plain_uv_albedo.png", 1) +
+                                               R"(", "uv_scale": [2.5, 1.5], "uv_offset": [0.3, -0.2], )" + kPlainSampler + "}"),
+                   "plain_uv", true);
+}
+// The seed's distorted albedo (its default numbers) at the mesh's own UVs.
+TEST(Lab3PlainSampler, DistortedAlbedo) {
+    expect_matches(plane_scene("plain_distorted", R"({"albedo_map": ")" + binary_map("plain_distorted_albedo.png", 2) +
+                                                      R"(", "sampling": "distorted", )" + kPlainSampler + "}"),
+                   "plain_distorted", true);
+}
+
 TEST(Lab3Render, DistortedSampling) {
     expect_matches(plane_scene("distorted", R"({"albedo_map": ")" + tex("bricks.png") + R"(", "sampling": "distorted", )" +
                                                 kAnisoOff + "}"),

@@ -399,6 +399,69 @@ TEST(MipChain, EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths) {
 // colour maps, so this checks the chain (mip_chain) by itself.
 TEST(MipChain, DataMapLevelsAreBoxesOfTheLevelAbove) { expect_levels_are_boxes({TexelEncoding::Linear}); }
 
+// --- what the device reads a map's bytes as -------------------------------------------------
+
+// A one-level texture's texels as the device converts them to numbers: a nearest blit of the
+// same size into a 32-bit float image (a blit converts through both formats, the spec's
+// "Copying Data Between Images"), read back.
+namespace {
+std::vector<float> texels_as_numbers(const lab::VulkanContext& vk, const Texture& t) {
+    const VkExtent2D extent{t.width, t.height};
+    // (SAMPLED only because create_image_2d makes a view, which needs a usage a view can have.)
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const lab::Image numbers = create_image_2d(vk, extent, VK_FORMAT_R32G32B32A32_SFLOAT, usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    const size_t count = size_t(t.width) * t.height * 4;
+    lab::Buffer buffer = lab::Buffer::host_visible(vk, count * sizeof(float), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    vk.run_once([&](VkCommandBuffer cmd) {
+        const auto transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        image_barrier(cmd, t.image.image, 0, 1, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, transfer);
+        image_barrier(cmd, numbers.image, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, transfer);
+        VkImageBlit region{};
+        region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.srcOffsets[1] = region.dstOffsets[1] = {int32_t(t.width), int32_t(t.height), 1};
+        vkCmdBlitImage(cmd, t.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, numbers.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                       &region, VK_FILTER_NEAREST);
+        image_barrier(cmd, numbers.image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, transfer, transfer);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {t.width, t.height, 1};
+        vkCmdCopyImageToBuffer(cmd, numbers.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &copy);
+    });
+    const float* p = static_cast<const float*>(buffer.mapped());
+    return std::vector<float>(p, p + count);
+}
+}  // namespace
+
+// A colour map's bytes are sRGB-encoded (as image files store them): the device must decode them
+// through the sRGB curve (the spec's "sRGB EOTF"), alpha excepted; a data map's bytes are plain
+// numbers, byte/255. The expected values are the curve's, computed here from its definition.
+TEST(TexelFormat, ColourMapsDecodeThroughTheSrgbCurveDataMapsDoNot) {
+    const auto eotf = [](double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); };
+    int messages = 0;
+    {
+        lab::ContextOptions options;
+        options.validate = true;
+        options.message_count = &messages;
+        lab::VulkanContext vk(options);
+        const lab::Image8 bytes{4, 1, {0, 10, 64, 128, 128, 192, 255, 64, 255, 0, 32, 200, 7, 250, 100, 0}};
+        for (const TexelEncoding encoding : {TexelEncoding::Srgb, TexelEncoding::Linear}) {
+            const bool colour = encoding == TexelEncoding::Srgb;
+            const std::vector<float> got = texels_as_numbers(vk, upload_texture(vk, bytes, false, MipSource::Auto, encoding));
+            ASSERT_EQ(got.size(), bytes.rgba.size());
+            for (size_t i = 0; i < got.size(); ++i) {
+                const double byte = bytes.rgba[i] / 255.0;
+                const double want = colour && i % 4 != 3 ? eotf(byte) : byte;
+                EXPECT_NEAR(got[i], want, 1e-3) << (colour ? "colour" : "data") << " map, texel " << i / 4 << " channel " << i % 4
+                                                << ": byte " << int(bytes.rgba[i]);
+            }
+        }
+    }
+    EXPECT_EQ(messages, 0) << "validation messages";
+}
+
 // --- the reference's sampling, by hand ---------------------------------------------
 
 TEST(ReferenceSampling, WrapModes) {

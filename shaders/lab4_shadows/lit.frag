@@ -50,7 +50,7 @@ vec4 lookup(sampler2D map, vec2 uv) {
 // line up, so the tiling is much harder to see.
 vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
     if (!DISTORTED) return lookup(albedo_map, uv).rgb;
-    // EXERCISE distorted_uv: the seed's distorted albedo: which lookups (lookup(): the sampler or the probes) at uv and P, wobbled or scaled, blended how (GpuMaterial::distortion)? Read this lab's README "The equation". Wrong: plain tiling, or a jump as uv_offset moves a whole repeat. Checked by Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers, Lab3Render.DistortedSamplingWholeOffsetRepeat, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.DistortedSamplingHugeOffset.
+    // EXERCISE distorted_uv: the seed's distorted albedo: which lookups (lookup(): the sampler or the probes) at uv and P, wobbled or scaled, blended how (GpuMaterial::distortion)? Read this lab's README "The equation". Wrong: plain tiling, or a jump as uv_offset moves a whole repeat. Checked by Lab3PlainSampler.DistortedAlbedo, Lab3Render.DistortedSampling, Lab3Render.DistortedSamplingOwnNumbers, Lab3Render.DistortedSamplingWholeOffsetRepeat, Lab3Render.DistortedSamplingWholeOffsetMirror, Lab3Render.DistortedSamplingHugeOffset.
     // STUB: return lookup(albedo_map, uv).rgb;  // no distortion: the tiling shows as plainly as without it
     const vec4 k0 = m.distortion[0], k1 = m.distortion[1], k2 = m.distortion[2], k3 = m.distortion[3], k4 = m.distortion[4];
     const vec2 d = uv + vec2(k0.x * sin(k0.z * uv.y + k1.x * P.y + k3.x), k0.y * cos(k0.w * uv.x + k1.y * P.x + k3.y));
@@ -63,11 +63,11 @@ vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
 // and texture_terms; docs/lighting.md, "Lab 3: textured terms"); a map the material lacks is not
 // sampled at all.
 Material textured(Material m, vec2 uv, vec3 P) {
-    // EXERCISE uv_transform: the UV the maps are read at: uv tiled by uv_scale and shifted by uv_offset: which comes first, where are they in m.uv_transform? Read docs/scene-format.md (uv_scale), the Vulkan spec's "Wrapping Operation". Wrong: the map once per object whatever uv_scale says, or shifted by the wrong amount. Checked by Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
+    // EXERCISE uv_transform: the UV the maps are read at: uv tiled by uv_scale and shifted by uv_offset: which comes first, where are they in m.uv_transform? Read docs/scene-format.md (uv_scale), the Vulkan spec's "Wrapping Operation". Wrong: the map once per object whatever uv_scale says, or shifted by the wrong amount. Checked by Lab3PlainSampler.UvScaleAndOffset, Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
     // STUB: // the UVs as they are: no tiling, no shift
     uv = uv * m.uv_transform.xy + m.uv_transform.zw;
     // END EXERCISE
-    // EXERCISE texture_terms: the material with its maps: does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…), each read by lookup()? Read docs/lighting.md "Lab 3: textured terms". Wrong: plain colours, a washed-out map, a grid that does not glow. Checked by Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
+    // EXERCISE texture_terms: the material with its maps: does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…), each read by lookup()? Read docs/lighting.md "Lab 3: textured terms". Wrong: plain colours, a washed-out map, a grid that does not glow. Checked by Lab3PlainSampler.MapTermsAtTheMeshUv, Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
     // STUB: // the maps are not read: every textured material shows its plain colours
     if (ALBEDO_MAP) m.albedo.rgb *= albedo_texel(m, uv, P);
     if (SPECULAR_MAP) m.specular.rgb *= lookup(specular_map, uv).rgb;
