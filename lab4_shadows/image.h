@@ -15,14 +15,14 @@
 #include <cstdint>
 
 // A 2D image of `mip_levels` levels and one layer, optimally tiled, contents undefined: the
-// description create_image() makes (a cube map, lab 4, starts from it).
+// description create_image() makes (other shapes start from it: more layers, other flags).
 VkImageCreateInfo image_info_2d(VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, uint32_t mip_levels);
 
 // The image `info` describes, device-local memory bound to it, and a view of `view_type` over
 // its `aspect` (colour or depth), every level and every layer.
 lab::Image create_image(const lab::VulkanContext& vk, const VkImageCreateInfo& info, VkImageViewType view_type,
                         VkImageAspectFlags aspect);
-// create_image() of image_info_2d() with a 2D view (textures; lab 4's maps).
+// create_image() of image_info_2d() with a 2D view (a texture).
 lab::Image create_image_2d(const lab::VulkanContext& vk, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                            VkImageAspectFlags aspect, uint32_t mip_levels = 1);
 // A view of `range` (aspect, levels, layers) of `image`, seen as `view_type`.
