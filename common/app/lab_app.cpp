@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <utility>
 
 namespace lab {
@@ -23,6 +24,21 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The passes the loop itself names (a lab names its own, pass_timer.h).
+constexpr const char* kMainPass = "main pass";
+constexpr const char* kUiPass = "UI";
+
+std::string format_ms(float ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", ms);
+    return text;
+}
+
+Frame with_timer(Frame frame, PassTimer* timer) {
+    frame.timer = timer;
+    return frame;
+}
 
 // The device's largest image side for a colour attachment. The command line allows up to 65536;
 // a larger image than the device can make is bad input like any other (one line, exit code 2).
@@ -72,13 +88,14 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
     instruments.window = window_ != nullptr;
     instruments.status_file = window_ ? options.dev.status_file : "";
     instruments.fail_after_submit = options.dev.fail_after_submit;
-    dev_ = std::make_unique<dev::Instruments>(instruments);
+    dev_ = std::make_unique<dev::Instruments>(*vk_, instruments);
 }
 
 LabApp::~LabApp() {
     if (vk_) vkDeviceWaitIdle(vk_->device());
     ui_.reset();
     target_.reset();
+    dev_.reset();  // its query pools
     vk_.reset();
     window_.reset();
 }
@@ -191,6 +208,8 @@ void LabApp::show_frame_time(Clock::time_point woke) {
     recent_frames_.add(work_ms);
     if (shown_frame_ms_ == 0.0f || woke - shown_at_ >= std::chrono::milliseconds(500)) {
         shown_frame_ms_ = recent_frames_.median();
+        shown_gpu_ms_.clear();
+        for (const dev::PassTime& pass : dev_->gpu_passes().recent_medians()) shown_gpu_ms_.emplace_back(pass.name, float(pass.ms));
         shown_at_ = woke;
     }
 }
@@ -200,17 +219,34 @@ bool LabApp::draw_window_frame(RenderTarget& target, const Callbacks& cb, float 
     // the lab draws with (a new renderer). Then the lab's own commands outside the pass (lab 4's
     // shadow maps), then the overlay, redrawn if the UI changed; its translucent edges are blended
     // over the lab's picture inside the pass, its opaque panels copied in after it (imgui_renderer.h).
+    // Each pass's GPU time (gpu_timer.h): the lab's own passes, the main pass, the UI's three parts.
+    dev::GpuPassTimer& gpu = dev_->gpu_passes();
+    PassTimer* timer = gpu.frame_timer();
+    std::optional<TimedPass> main_pass;  // from before the render pass begins to the lab's last draw
     const BeforePass before_pass = [&](const Frame& begun) {
+        gpu.begin_frame(begun.cmd, begun.slot);
         ui_->new_frame(*window_, ui_dt);
         cb.ui();
-        if (cb.before_pass) cb.before_pass(begun);
-        ui_->prepare(begun.cmd, begun.slot, begun.extent);
+        if (cb.before_pass) cb.before_pass(with_timer(begun, timer));
+        {
+            const TimedPass timed(timer, begun.cmd, kUiPass);
+            ui_->prepare(begun.cmd, begun.slot, begun.extent);
+        }
+        main_pass.emplace(timer, begun.cmd, kMainPass);
     };
     Frame frame;
     if (!target.begin_frame(cb.background(), frame, before_pass)) return false;  // minimized, or a new swapchain
+    frame.timer = timer;
     cb.record(frame);
-    ui_->render(frame.cmd);
-    target.end_frame([&](VkCommandBuffer cmd, VkImage image) { ui_->render_after_pass(cmd, image); });
+    main_pass.reset();
+    {
+        const TimedPass timed(timer, frame.cmd, kUiPass);
+        ui_->render(frame.cmd);
+    }
+    target.end_frame([&](VkCommandBuffer cmd, VkImage image) {
+        const TimedPass timed(timer, cmd, kUiPass);
+        ui_->render_after_pass(cmd, image);
+    });
     return true;
 }
 
@@ -220,20 +256,44 @@ void LabApp::frame_stats_ui() {
         ImGui::Text("%.2f ms/frame (%.0f fps)", shown_frame_ms_, 1000.0 / std::max(shown_frame_ms_, 1e-3f));
     else
         ImGui::Text("%.2f ms/frame, drawn on demand", shown_frame_ms_);
+    gpu_times_ui();
     ImGui::Checkbox("continuous rendering", &continuous_rendering_);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Draw frames all the time, not only when something changes\n(uses a CPU core while idle)");
 }
 
+// Where the GPU's time goes: each pass the frame named, and their sum (medians of the recent frames).
+void LabApp::gpu_times_ui() const {
+    if (!dev_->gpu_passes().supported()) {
+        ImGui::TextDisabled("GPU time: this device has no timestamps");
+        return;
+    }
+    float sum = 0.0f;
+    for (const auto& [name, ms] : shown_gpu_ms_) sum += ms;
+    // A fold of its own (the label changes with the sum; "###" keeps its id, and its state).
+    const std::string label = "GPU " + format_ms(sum) + " ms/frame###gpu passes";
+    if (!ImGui::TreeNodeEx(label.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) return;
+    for (const auto& [name, ms] : shown_gpu_ms_) ImGui::TextDisabled("%s %.2f ms", name.c_str(), ms);
+    ImGui::TreePop();
+}
+
 void LabApp::run_headless(const Callbacks& cb) {
     // Headless time advances at a fixed rate, so the output is deterministic.
     const int frames = dev_->benchmarking() ? dev_->benchmark_frames() : std::max(1, options_.frames);
+    dev::GpuPassTimer& gpu = dev_->gpu_passes();
     const auto start = Clock::now();
     for (int i = 0; i < frames; ++i) {
         cb.update(1.0f / 60.0f);
         Frame frame;
-        target_->begin_frame(cb.background(), frame, cb.before_pass);
+        std::optional<TimedPass> main_pass;  // from before the render pass begins to the lab's last draw
+        target_->begin_frame(cb.background(), frame, [&](const Frame& begun) {
+            gpu.begin_frame(begun.cmd, begun.slot);
+            if (cb.before_pass) cb.before_pass(with_timer(begun, gpu.frame_timer()));
+            main_pass.emplace(gpu.frame_timer(), begun.cmd, kMainPass);
+        });
+        frame.timer = gpu.frame_timer();
         cb.record(frame);
+        main_pass.reset();
         target_->end_frame();
         dev_->frame_drawn(*target_, target_->extent(), 0);
     }

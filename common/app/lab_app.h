@@ -15,6 +15,8 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace lab {
 
@@ -66,7 +68,8 @@ public:
     // number that changes every frame is unreadable, and it would make the UI overlay be redrawn
     // every frame, see imgui_renderer.h).
     float average_frame_ms() const { return shown_frame_ms_; }
-    // The frame time line and the "continuous rendering" checkbox, for the lab's panel.
+    // The frame time line, the GPU time of each pass and the "continuous rendering" checkbox, for
+    // the lab's panel.
     void frame_stats_ui();
     // Something the picture depends on changed outside the input (a scene reload, an animation):
     // draw a frame even though no event arrived (a window draws only on demand, see redraw_policy.h).
@@ -83,6 +86,7 @@ private:
     bool draw_window_frame(RenderTarget& target, const Callbacks& callbacks, float ui_dt);  // false: no image
     void poll_input();
     void show_frame_time(std::chrono::steady_clock::time_point woke);
+    void gpu_times_ui() const;
 
     LabInfo info_;
     Options options_;
@@ -98,6 +102,7 @@ private:
     bool have_cursor_ = false;
     RecentFrames recent_frames_;   // the work of the last frames drawn
     float shown_frame_ms_ = 0.0f;  // their median when last shown
+    std::vector<std::pair<std::string, float>> shown_gpu_ms_;  // each pass's GPU time, shown with it
     std::chrono::steady_clock::time_point shown_at_{};
     bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
     bool redraw_requested_ = false;

@@ -5,8 +5,10 @@
 
 namespace lab::dev {
 
-Instruments::Instruments(InstrumentSettings settings)
-    : settings_(std::move(settings)), benchmark_(settings_.benchmark_frames) {
+Instruments::Instruments(const VulkanContext& vk, InstrumentSettings settings)
+    : settings_(std::move(settings)),
+      benchmark_(settings_.benchmark_frames),
+      gpu_passes_(vk, settings_.window || benchmark_.on(), benchmark_.on()) {
     if (!settings_.status_file.empty()) status_ = std::make_unique<StatusFile>(settings_.status_file);
 }
 
@@ -34,9 +36,11 @@ void Instruments::window_went_idle() {
     if (status_) status_->went_idle();
 }
 
-bool Instruments::report(VkExtent2D extent, uint64_t ui_redraws) const {
+bool Instruments::report(VkExtent2D extent, uint64_t ui_redraws) {
     if (benchmark_.timed_frames() == 0) return false;
     benchmark_.print(settings_.lab, extent.width, extent.height, settings_.window ? "window" : nullptr);
+    gpu_passes_.collect();  // the last frames' results
+    gpu_passes_.print(settings_.lab, Benchmark::kWarmupFrames, benchmark_.timed_frames());
     if (settings_.window) phases_.print(settings_.lab, benchmark_.timed_frames(), ui_redraws);
     return true;
 }

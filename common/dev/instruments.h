@@ -1,11 +1,13 @@
 // instruments.h — the tooling the frame loop calls at a few named points: the --benchmark timing
 // and its report, the window's time breakdown, the status file, memory given back when a window
 // goes idle, and the injected failure. Each is off unless its flag asked for it (--benchmark,
-// --dev-…: app/dev_options.h). Nothing here changes a picture.
+// --dev-…: app/dev_options.h), but the GPU time per pass: on in a window (the panel shows it) and
+// in a benchmark (its gpu_passes line). Nothing here changes a picture.
 #pragma once
 
 #include "benchmark.h"
 #include "frame_phases.h"
+#include "gpu_timer.h"
 #include "render_target.h"
 #include "status_file.h"
 
@@ -25,7 +27,7 @@ struct InstrumentSettings {
 
 class Instruments {
 public:
-    explicit Instruments(InstrumentSettings settings);
+    Instruments(const VulkanContext& vk, InstrumentSettings settings);
 
     bool benchmarking() const { return benchmark_.on(); }
     // Frames a benchmark renders: the warm-up, then one more than the intervals it times.
@@ -34,6 +36,8 @@ public:
     // (frame_phases.h) when a window benchmark asks where the time goes.
     RenderTarget& measured(RenderTarget& target);
     FramePhases::LabCommands measured(FramePhases::LabCommands lab_commands);
+    // The GPU time of each pass (gpu_timer.h): on in a window and in a benchmark.
+    GpuPassTimer& gpu_passes() { return gpu_passes_; }
 
     // ---- The loop's named points.
     // A frame was submitted (and presented). The test hook throws here after the Nth, as a lost
@@ -43,14 +47,16 @@ public:
     void frame_drawn(RenderTarget& target, VkExtent2D extent, uint64_t ui_redraws);
     // A window went idle after drawing: its frames are done; memory goes back to the system.
     void window_went_idle();
-    // The benchmark's report lines, after the last frame (a window adds its breakdown); false
-    // when no frame was timed (a window closed during the warm-up).
-    bool report(VkExtent2D extent, uint64_t ui_redraws) const;
+    // The benchmark's report lines, after the last frame (the GPU's passes; a window adds its
+    // breakdown); false when no frame was timed (a window closed during the warm-up). The device
+    // must be idle.
+    bool report(VkExtent2D extent, uint64_t ui_redraws);
 
 private:
     InstrumentSettings settings_;
     Benchmark benchmark_;
     FramePhases phases_;
+    GpuPassTimer gpu_passes_;
     std::unique_ptr<StatusFile> status_;
     int drawn_ = 0;
 };

@@ -7,6 +7,7 @@
 
 #include "buffer.h"
 #include "image_io.h"
+#include "pass_timer.h"
 #include "vk_context.h"
 
 #include <glm/glm.hpp>
@@ -21,6 +22,7 @@ struct Frame {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     uint32_t slot = 0;  // frame-in-flight slot: index per-frame resources (uniform buffers) with it
     VkExtent2D extent{};
+    PassTimer* timer = nullptr;  // names passes for the panel's GPU times (pass_timer.h); null: none
 };
 
 // Commands a lab records before the target's render pass begins (lab 4: the shadow passes render
