@@ -132,6 +132,50 @@ TEST(Lab2Render, ManyLights) {
     expect_matches_reference(variant(kScenes + "/lab2_many_lights.json", "many", R"({"markers": false})"), "many");
 }
 
+// --- one exercise per picture ----------------------------------------------------------
+// Each scene keeps every code path but one exercise's where that exercise's stub and its answer
+// agree: the Lambert model (no highlight at all), objects unturned at uniform scale (the normals
+// only turn and stretch with the object; the floor's (8, 1, 8) keeps its normal's direction),
+// point and spot lights without falloff ([1, 0, 0]), per-pixel shading. One of these is changed:
+// the thing the test is about.
+std::string one_term(const std::string& scene_file, const std::string& name, bool turned, const std::string& model = "lambert",
+                     const std::string& shading = "phong", bool falloff = false) {
+    return scene_variant(kLab, scene_file, name, [&](json& scene) {
+        scene["lighting"]["model"] = model;
+        scene["lighting"]["shading"] = shading;
+        if (!falloff)
+            for (json& light : scene["lights"])
+                if (light["type"] != "directional") light["attenuation"] = {1, 0, 0};
+        if (!turned)
+            for (json& object : scene["objects"])
+                if (object["mesh"] != "plane") {
+                    object.erase("rotation_deg");
+                    object["scale"] = {1, 1, 1};
+                }
+    });
+}
+// normal_matrix: turned, non-uniformly scaled objects under a directional light.
+TEST(Lab2Term, TurnedAndSquashedObjects) {
+    expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_normals", true), "term_normals");
+}
+// attenuation: two point lights with their falloff.
+TEST(Lab2Term, PointLightFalloff) {
+    expect_matches_reference(one_term(kTestScenes + "/lab2_point.json", "term_falloff", false, "lambert", "phong", true),
+                             "term_falloff");
+}
+// spot_cone: two spot lights, no falloff with distance.
+TEST(Lab2Term, SpotCones) { expect_matches_reference(one_term(kTestScenes + "/lab2_spot.json", "term_spots", false), "term_spots"); }
+// blinn_phong: the highlights of the default model under a directional light.
+TEST(Lab2Term, BlinnPhongHighlights) {
+    expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_highlights", false, "blinn_phong"),
+                             "term_highlights");
+}
+// gouraud: the same equation per vertex.
+TEST(Lab2Term, GouraudShading) {
+    expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_gouraud", false, "lambert", "gouraud"),
+                             "term_gouraud");
+}
+
 // --- lighting models (per-pixel shading) ----------------------------------------------
 
 class Lab2Model : public ::testing::TestWithParam<std::string> {};

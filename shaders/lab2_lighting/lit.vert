@@ -24,7 +24,7 @@ void main() {
     out_gouraud_color = vec3(0.0);
     out_bad = 0.0;
     if (SHADING == SHADING_GOURAUD) {
-        // EXERCISE gouraud: out_gouraud_color: the equation lit.frag evaluates per pixel, here at this vertex (world, out_world_normal). Which unit N and V does shade() expect, and if the normal is zero? Read docs/lighting.md "Shading models", "Numerical safety", lit.frag's main(). Wrong: flat unlit colours, facets too bright or dark, black or magenta corners. Checked by Lab2Shading.GouraudVsPhong.
+        // EXERCISE gouraud: out_gouraud_color: the equation lit.frag evaluates per pixel, here at this vertex (world, out_world_normal). Which unit N and V does shade() expect, and if the normal is zero? Read docs/lighting.md "Shading models", "Numerical safety", lit.frag's main(). Wrong: flat unlit colours, facets too bright or dark, black or magenta corners. Checked by Lab2Term.GouraudShading, Lab2Shading.GouraudVsPhong.
         // STUB: out_gouraud_color = materials[object.material].albedo.rgb;  // unlit
         const vec3 to_eye = frame.camera_position.xyz - world.xyz;
         // A zero vertex normal has no direction: the vertex faces the viewer.

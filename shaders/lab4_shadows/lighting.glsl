@@ -108,7 +108,7 @@ float power(float x, float n) {
 
 // Light falloff: the fraction of a light's radiance left at the distance d (exercise attenuation).
 float attenuation(vec3 k, float d) {
-    // EXERCISE attenuation: what fraction of a light's radiance is left after the distance d, given k = (constant, linear, quadratic)? And if all are zero, or their sum tiny? Read docs/lighting.md "Light types", "Numerical safety" (MIN_DENOMINATOR). Wrong: lights with no falloff look like flat floodlights, near and far walls equally lit; Inf/NaN pixels. Checked by Lab2Render.PointLights.
+    // EXERCISE attenuation: what fraction of a light's radiance is left after the distance d, given k = (constant, linear, quadratic)? And if all are zero, or their sum tiny? Read docs/lighting.md "Light types", "Numerical safety" (MIN_DENOMINATOR). Wrong: lights with no falloff look like flat floodlights, near and far walls equally lit; Inf/NaN pixels. Checked by Lab2Term.PointLightFalloff, Lab2Render.PointLights.
     // STUB: return 1.0;  // no falloff: every point light reaches everywhere at full strength
     if (k.x + k.y + k.z <= 0.0) return 1.0;
     return 1.0 / max(k.x + k.y * d + k.z * d * d, MIN_DENOMINATOR);
@@ -117,7 +117,7 @@ float attenuation(vec3 k, float d) {
 
 // Spot cone: cos_theta = cos of the angle between the light's axis and the ray to the point.
 float spot_factor(vec4 cone, float cos_theta) {
-    // EXERCISE spot_cone: how much of a spot's light reaches a point cos_theta off its axis: inside the inner cone, outside the outer, between? What do cone.x, cone.y hold (spot_cone() in lights.cpp), and cone.y = 0? Read docs/lighting.md "Light types", "Numerical safety". Wrong: a spot lighting all around, a hard-edged spot where the edge should fade, or light outside the cone. Checked by Lab2Render.SpotLights.
+    // EXERCISE spot_cone: how much of a spot's light reaches a point cos_theta off its axis: inside the inner cone, outside the outer, between? What do cone.x, cone.y hold (spot_cone() in lights.cpp), and cone.y = 0? Read docs/lighting.md "Light types", "Numerical safety". Wrong: a spot lighting all around, a hard-edged spot where the edge should fade, or light outside the cone. Checked by Lab2Term.SpotCones, Lab2Render.SpotLights.
     // STUB: return 1.0;  // no cone: a spot light shines in every direction
     if (cone.y <= 0.0) return cos_theta >= cone.x ? 1.0 : 0.0;  // inner == outer: a hard edge
     return clamp((cos_theta - cone.x) * cone.y, 0.0, 1.0);
@@ -206,7 +206,7 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
     }
     // Blinn-Phong specular (also for Oren-Nayar and Minnaert, which only change the diffuse part).
     check(diffuse);
-    // EXERCISE blinn_phong: the highlight to add to diffuse: how bright where the half vector lines up with N (nh), how does the shininess n narrow it, what colour (s)? Read docs/lighting.md "The default equation", "Numerical safety" (why power(), not pow()). Wrong: shiny materials look matte, the highlight covers the whole lit side, or has the albedo's colour. Checked by Lab2Render.DirectionalLight.
+    // EXERCISE blinn_phong: the highlight to add to diffuse: how bright where the half vector lines up with N (nh), how does the shininess n narrow it, what colour (s)? Read docs/lighting.md "The default equation", "Numerical safety" (why power(), not pow()). Wrong: shiny materials look matte, the highlight covers the whole lit side, or has the albedo's colour. Checked by Lab2Term.BlinnPhongHighlights, Lab2Render.DirectionalLight.
     // STUB: return diffuse;  // matte: no highlights
     return diffuse + s * power(nh, n);
     // END EXERCISE
