@@ -13,6 +13,7 @@ struct ShadowConstants {
     glm::vec4 transmittance;  // x: 1 − opacity
 };
 constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+const char* const kLightKinds[] = {"directional", "point", "spot"};  // LightDesc::Type's order
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
 
@@ -155,14 +156,14 @@ std::vector<float> ShadowMaps::key_of(const lab::LightDesc& light, const Lightin
     return key;
 }
 
-void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out) {
+void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out, lab::PassTimer* timer) {
     *out = GpuShadows{};
     for (size_t slot = 0; slot < maps_.size(); ++slot) {
         Map& map = maps_[slot];
         const lab::LightDesc& light = lighting.lights[size_t(map.light)];
         std::vector<float> key = key_of(light, lighting);
         if (key != map.key) {  // the light or a caster in its volume changed (or never rendered)
-            render(cmd, map, light, lighting);
+            render(cmd, map, light, lighting, timer);
             map.key = std::move(key);
             ++renders_;
         }
@@ -209,7 +210,8 @@ std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light) const {
     return in_map;
 }
 
-void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting) {
+void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting,
+                        lab::PassTimer* timer) {
     const glm::dvec3 position(light.position), direction(light.direction);
     const std::vector<bool> in_map = casters_for(light);
     std::vector<Box> casters;
@@ -234,17 +236,24 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
 
+    // The panel's GPU time per map: "map: spot 1" (light 1), its transmittance map's beside it.
+    const std::string pass = std::string("map: ") + kLightKinds[int(light.type)] + " " + std::to_string(map.light);
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);
-        map.depth.begin(cmd, face);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
-        // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
-        // (grows with how steeply the triangle's depth changes across a texel).
-        vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
-        draw_casters(cmd, world_to_clip, lighting, false, in_map);
-        vkCmdEndRenderPass(cmd);
-        if (translucent_->active())
+        {
+            const lab::TimedPass timed(timer, cmd, pass);
+            map.depth.begin(cmd, face);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
+            // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
+            // (grows with how steeply the triangle's depth changes across a texel).
+            vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
+            draw_casters(cmd, world_to_clip, lighting, false, in_map);
+            vkCmdEndRenderPass(cmd);
+        }
+        if (translucent_->active()) {
+            const lab::TimedPass timed(timer, cmd, "translucent " + pass);
             translucent_->render(cmd, map.translucent, face, map.cube,
                                  [&] { draw_casters(cmd, world_to_clip, lighting, true, in_map); });
+        }
     }
 }

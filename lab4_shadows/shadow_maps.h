@@ -8,6 +8,7 @@
 
 #include "depth_view.h"
 #include "offscreen.h"
+#include "pass_timer.h"
 #include "pipeline_builder.h"
 #include "translucent_shadows.h"
 #include "gpu_mesh.h"
@@ -51,8 +52,9 @@ public:
     void write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const;
 
     // Outside any render pass, before the camera's: renders the maps whose light or casters
-    // changed since they were last rendered, and writes every slot's data to `out`.
-    void record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out);
+    // changed since they were last rendered, and writes every slot's data to `out`. `timer` (may be
+    // null) times each map's passes for the panel (pass_timer.h).
+    void record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out, lab::PassTimer* timer);
     // True when these maps still fit `lighting` (the same lights cast shadows, with the same
     // resolutions); if not, the renderer is rebuilt (new images).
     bool matches(const Lighting& lighting) const;
@@ -72,7 +74,8 @@ private:
     };
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
-    void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting);
+    void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting,
+                lab::PassTimer* timer);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting, bool translucent,
                       const std::vector<bool>& in_map) const;
     uint32_t clamp_resolution(int requested, bool cube) const;

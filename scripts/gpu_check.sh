@@ -38,7 +38,7 @@ vi=/opt/labgpu/bin/vulkaninfo
 { \$vi --summary 2>&1 | grep -E "deviceName|driverInfo|apiVersion" | head -3
   \$vi 2>&1 | grep -E "subTexelPrecisionBits|mipmapPrecisionBits|maxImageDimension2D" | head -3; } | tee \$OUT/device.txt
 for lab in \$(ls -d $build/lab*_*/); do n=\$(basename "\$lab")
-  "\$lab/\$n" --headless --validate --out \$OUT/\$n.png 2>&1 | tail -1; "\$lab/\$n" --benchmark 300 2>&1 | tail -1
+  "\$lab/\$n" --headless --validate --out \$OUT/\$n.png 2>&1 | tail -1; "\$lab/\$n" --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) '
 done | tee \$OUT/labs.txt
 cd $build && \$CT -j16 --output-on-failure -E 'window|soak|tradeoff_quick|grader|gallery|test_labels' > \$OUT/ctest.log 2>&1
 grep -E "tests passed|compare \]" \$OUT/ctest.log; sed -n '/The following tests/,\$p' \$OUT/ctest.log
