@@ -263,7 +263,7 @@ void LabApp::frame_stats_ui() {
 }
 
 // Where the GPU's time goes: each pass the frame named, and their sum (medians of the recent frames).
-void LabApp::gpu_times_ui() const {
+void LabApp::gpu_times_ui() {
     if (!dev_->gpu_passes().supported()) {
         ImGui::TextDisabled("GPU time: this device has no timestamps");
         return;
@@ -272,7 +272,13 @@ void LabApp::gpu_times_ui() const {
     for (const auto& [name, ms] : shown_gpu_ms_) sum += ms;
     // A fold of its own (the label changes with the sum; "###" keeps its id, and its state).
     const std::string label = "GPU " + format_ms(sum) + " ms/frame###gpu passes";
-    if (!ImGui::TreeNodeEx(label.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const bool open = ImGui::TreeNodeEx(label.c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    // The panel was sized to its first frame, before any pass was timed: refit its height when
+    // the lines below change, or they would push the panel's own widgets out of sight.
+    const size_t lines = open ? shown_gpu_ms_.size() : 0;
+    if (lines != gpu_lines_shown_) ImGui::SetWindowSize(ImVec2(ImGui::GetWindowWidth(), 0.0f));
+    gpu_lines_shown_ = lines;
+    if (!open) return;
     for (const auto& [name, ms] : shown_gpu_ms_) ImGui::TextDisabled("%s %.2f ms", name.c_str(), ms);
     ImGui::TreePop();
 }

@@ -86,7 +86,7 @@ private:
     bool draw_window_frame(RenderTarget& target, const Callbacks& callbacks, float ui_dt);  // false: no image
     void poll_input();
     void show_frame_time(std::chrono::steady_clock::time_point woke);
-    void gpu_times_ui() const;
+    void gpu_times_ui();
 
     LabInfo info_;
     Options options_;
@@ -103,6 +103,7 @@ private:
     RecentFrames recent_frames_;   // the work of the last frames drawn
     float shown_frame_ms_ = 0.0f;  // their median when last shown
     std::vector<std::pair<std::string, float>> shown_gpu_ms_;  // each pass's GPU time, shown with it
+    size_t gpu_lines_shown_ = 0;  // the panel's pass lines last frame (a change refits the panel)
     std::chrono::steady_clock::time_point shown_at_{};
     bool continuous_rendering_ = false;  // the panel's checkbox: draw every frame, even when idle
     bool redraw_requested_ = false;
