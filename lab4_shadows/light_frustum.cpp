@@ -55,6 +55,28 @@ glm::dvec3 up_for(const glm::dvec3& direction) {
 
 glm::dmat4 LightFrustum::world_to_clip(const glm::dmat4& relative) const { return relative * glm::translate(glm::dmat4(1.0), -origin); }
 
+double LightFrustum::depth_of_texels(const Box& caster, double texels) const {
+    if (!perspective) return texels * texel / (far_plane - near_plane);  // orthographic: depth is linear
+    // Perspective: depth = a − b / z changes by b / z² per unit of z, and a texel is texel · z
+    // wide: b · texels · texel / z, largest at the caster's nearest z: a cube face's
+    // depth is a point's largest |coordinate| relative to the light (the Chebyshev distance), a
+    // spot's the distance along its axis (clip w, smallest at a corner of the box).
+    double z = kInf;
+    if (cube) {
+        const glm::dvec3 gap = glm::max(glm::max(caster.lo - origin, origin - caster.hi), glm::dvec3(0.0));
+        z = std::max({gap.x, gap.y, gap.z});
+    } else {
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p(corner & 1 ? caster.hi.x : caster.lo.x, corner & 2 ? caster.hi.y : caster.lo.y,
+                               corner & 4 ? caster.hi.z : caster.lo.z);
+            z = std::min(z, (view_projection * glm::dvec4(p - origin, 1.0)).w);
+        }
+    }
+    z = std::max(z, near_plane);  // nearer: drawn at depth 0 (depth clamp)
+    const double b = far_plane * near_plane / (far_plane - near_plane);
+    return b * texels * texel / z;
+}
+
 bool uses_cube_map(const lab::LightDesc& light) {
     return light.type == lab::LightDesc::Type::Point ||
            (light.type == lab::LightDesc::Type::Spot && light.outer_deg > kWidestSpotMapDeg);
@@ -112,6 +134,7 @@ LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, d
               [&](const Box& b) { return -lab::transformed(b, world_view).lo.z; }, f.near_plane, f.far_plane);
     f.view_projection = flip_y(glm::perspectiveRH_ZO(fov, 1.0, f.near_plane, f.far_plane)) * view;
     f.texel = 2.0 * half_tan;
+    f.perspective = true;
     return f;
 }
 
@@ -139,6 +162,7 @@ LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& caste
     const glm::dmat4 projection = glm::perspectiveRH_ZO(glm::radians(90.0), 1.0, f.near_plane, f.far_plane);
     for (int i = 0; i < 6; ++i) f.faces[i] = projection * glm::lookAtRH(glm::dvec3(0.0), axes[i], ups[i]);
     f.texel = 2.0;
+    f.perspective = f.cube = true;
     return f;
 }
 

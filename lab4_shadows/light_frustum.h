@@ -28,9 +28,14 @@ struct LightFrustum {
     std::array<glm::dmat4, 6> faces{};   // point
     double near_plane = 0.0, far_plane = 1.0;
     double texel = 1.0;
+    bool perspective = false, cube = false;  // spot, point: depth = a − b / distance along the axis
 
     // World → clip, for the shadow pass (composed in double, then used in float).
     glm::dmat4 world_to_clip(const glm::dmat4& relative) const;
+    // How much the map's depth changes along the light over `texels` texels' world size (`texel`
+    // times that, times the distance for perspective maps) at the nearest point of `caster`: the
+    // depth bias's upper bound (shadow_maps.cpp).
+    double depth_of_texels(const Box& caster, double texels) const;
 };
 
 // `casters`: the objects the map holds (the shadow pass's casters_for: those that can shadow a

@@ -16,6 +16,8 @@ constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAG
 const char* const kLightKinds[] = {"directional", "point", "spot"};  // LightDesc::Type's order
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
+// The most depth bias a caster gets, in texels along the light at its nearest point (render()).
+constexpr double kMostBiasTexels = 1.0;
 
 bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
 
@@ -174,9 +176,11 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
 }
 
 // Draws the map's casters (`in_map`, casters_for) into the current pass: opaque ones with the
-// bound depth-only pipeline, or (translucent) the translucent ones with both translucent pipelines.
+// bound depth-only pipeline and the light's depth bias, at most `most_bias[i]` for caster i, or
+// (translucent, no `most_bias`) the translucent ones with both translucent pipelines.
 void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting,
-                              bool translucent, const std::vector<bool>& in_map) const {
+                              bool translucent, const std::vector<bool>& in_map, const lab::ShadowDesc* bias,
+                              const std::vector<float>& most_bias) const {
     const lab::GpuMesh* bound = nullptr;
     for (size_t i = 0; i < objects_.size(); ++i) {
         const Caster& c = objects_[i];
@@ -188,6 +192,7 @@ void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_cl
             bound = c.mesh;
         }
         vkCmdPushConstants(cmd, opaque_.layout, kBoth, 0, sizeof constants, &constants);
+        if (bias) vkCmdSetDepthBias(cmd, bias->bias, most_bias[i], bias->slope_bias);
         vkCmdDrawIndexed(cmd, c.mesh->index_count, 1, 0, 0, 0);
     }
 }
@@ -232,6 +237,16 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
     // normal_offset / resolution.
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
+    // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled (grows
+    // with how steeply the triangle's depth changes across a texel), both as the device computes
+    // them, and so at most kMostBiasTexels texels along the light at each caster (depthBiasClamp,
+    // in depth units: README, "Bias"). Unbounded, a device's bias can push a whole caster to the
+    // far end of the map (depth clamp: 1, no caster): a thin caster seen edge-on (huge slope), or
+    // a triangle crossing the light's plane (a float unit 2^(e − 23), e from its depth range).
+    std::vector<float> most_bias(objects_.size(), 0.0f);
+    if (vk_.enabled_features().depthBiasClamp)
+        for (size_t i = 0; i < objects_.size(); ++i)
+            if (in_map[i]) most_bias[i] = float(f.depth_of_texels(objects_[i].box, kMostBiasTexels / map.depth.size));
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp).
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
@@ -244,16 +259,13 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
             const lab::TimedPass timed(timer, cmd, pass);
             map.depth.begin(cmd, face);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
-            // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled
-            // (grows with how steeply the triangle's depth changes across a texel).
-            vkCmdSetDepthBias(cmd, light.shadow.bias, 0.0f, light.shadow.slope_bias);
-            draw_casters(cmd, world_to_clip, lighting, false, in_map);
+            draw_casters(cmd, world_to_clip, lighting, false, in_map, &light.shadow, most_bias);
             vkCmdEndRenderPass(cmd);
         }
         if (translucent_->active()) {
             const lab::TimedPass timed(timer, cmd, "translucent " + pass);
             translucent_->render(cmd, map.translucent, face, map.cube,
-                                 [&] { draw_casters(cmd, world_to_clip, lighting, true, in_map); });
+                                 [&] { draw_casters(cmd, world_to_clip, lighting, true, in_map, nullptr, {}); });
         }
     }
 }

@@ -77,7 +77,7 @@ private:
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting,
                 lab::PassTimer* timer);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting, bool translucent,
-                      const std::vector<bool>& in_map) const;
+                      const std::vector<bool>& in_map, const lab::ShadowDesc* bias, const std::vector<float>& most_bias) const;
     uint32_t clamp_resolution(int requested, bool cube) const;
     std::vector<bool> casters_for(const lab::LightDesc& light) const;
 
