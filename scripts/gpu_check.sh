@@ -7,7 +7,8 @@
 # check.sh prints the device and its texture precision limits, renders every lab headless with
 # --validate, runs `--benchmark 300`, and runs CTest without the tests that need what the GPU machine
 # lacks (Xvfb for window tests and soaks, matplotlib for tradeoff_quick, glslang/CMake for the grader,
-# gallery and test_labels). Logs and failing tests' diff images come back under $OUT.
+# gallery and test_labels), then lab 4's random scenes 7300..7699 (CTest runs 0..299). Logs and
+# failing tests' diff images come back under $OUT.
 set -euo pipefail
 # -h / --help: the comment at the top of this file, nothing run.
 case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
@@ -43,6 +44,13 @@ done | tee \$OUT/labs.txt
 cd $build && \$CT -j16 --output-on-failure -E 'window|soak|tradeoff_quick|grader|gallery|test_labels' > \$OUT/ctest.log 2>&1
 grep -E "tests passed|compare \]" \$OUT/ctest.log; sed -n '/The following tests/,\$p' \$OUT/ctest.log
 find $build/test_output -name '*_diff.png' | tar czf \$OUT/diffs.tgz -T - 2>/dev/null
+# Lab 4's random scenes beyond CTest's shards (seeds 7300..7699, 8 parts at once; tests/lab4_random_scenes.cpp):
+# the summary lines and failures in random_scenes.txt, each failing scene's pictures under random/.
+for p in 0 1 2 3 4 5 6 7; do
+  LAB_TEST_OUTPUT=\$OUT/random $build/tests/lab4_random_scenes --first \$((7300 + 50 * p)) --count 50 > \$OUT/random_part\$p.log 2>&1 &
+done; wait
+grep -h -E '^(lab4_random_scenes:|FAIL seed)' \$OUT/random_part*.log | tee \$OUT/random_scenes.txt
+rm -f \$OUT/random/lab4_random/*.json
 RUN
 chmod +x .gpu/check.sh
 echo "gpu_check: .gpu/ ready ($(du -sh .gpu | cut -f1)); now: run(command=\"bash .gpu/check.sh\", carry=[\".gpu\"])"
