@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
         callbacks.ui = [&] {
             camera_panel(app, camera, controls, reloader);
             lighting_panel(lighting);
-            if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms())) {
+            if (textures_panel(lighting, renderer->texture_warnings(), renderer->anisotropic_auto(), app.average_frame_ms())) {
                 // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
                 auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, app.shader_dir());
                 app.wait_idle();

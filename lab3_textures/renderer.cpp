@@ -124,11 +124,15 @@ void Renderer::load_textures(const Lighting& lighting) {
         texture_layout_ = lab::make_descriptor_set_layout(vk_, maps);
         texture_pool_ = lab::make_descriptor_pool(vk_, maps, textured);
     }
+    bool any_auto = false;
     for (const lab::MaterialDesc& m : lighting.materials) {
         material_sets_.push_back(VK_NULL_HANDLE);
+        // "anisotropic": "auto" becomes probes or the sampler's anisotropy for this device.
+        any_auto |= m.has_maps() && m.sampler.anisotropic == lab::SamplerDesc::Anisotropic::Auto;
+        const lab::SamplerDesc sampler = samplers_.resolve(m.sampler);
         // probes: the shader's own anisotropic filter, its maximum a constant (0 = off: no cost)
         material_maps_.push_back({!m.albedo_map.empty(), !m.specular_map.empty(), !m.emissive_map.empty(), m.distorted,
-                                  m.has_maps() ? m.sampler.probes() : 0});
+                                  m.has_maps() ? sampler.probes() : 0});
         if (!m.has_maps()) continue;
         material_sets_.back() = lab::allocate_descriptor_set(vk_, texture_pool_, texture_layout_);
         // A combined image sampler is three things: the sampler (how to read; identical settings
@@ -139,7 +143,7 @@ void Renderer::load_textures(const Lighting& lighting) {
         VkWriteDescriptorSet writes[3];
         for (uint32_t binding = 0; binding < 3; ++binding) {
             const Texture& t = maps[binding]->empty() ? white_ : textures_.at({*maps[binding], encodings[binding]});
-            images[binding] = {samplers_.get(m.sampler), t.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            images[binding] = {samplers_.get(sampler), t.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             writes[binding] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             writes[binding].dstSet = material_sets_.back();
             writes[binding].dstBinding = binding;  // albedo 0, specular 1, emissive 2 (lit.frag)
@@ -153,6 +157,7 @@ void Renderer::load_textures(const Lighting& lighting) {
     if (textured > 0)
         std::printf("textures: %zu images, %zu samplers for %u materials with maps\n", textures_.size(),
                     samplers_.size(), textured);
+    if (any_auto) std::printf("%s\n", samplers_.auto_choice().c_str());
 }
 
 void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,

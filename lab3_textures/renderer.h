@@ -30,6 +30,8 @@ public:
     // One line per map that could not be read (it shows the checkerboard) or sampler clamped.
     const std::vector<std::string>& texture_warnings() const { return warnings_; }
     size_t sampler_count() const { return samplers_.size(); }
+    // What "anisotropic": "auto" picks on this device (the Textures panel shows it).
+    std::string anisotropic_auto() const { return samplers_.auto_choice(); }
 
 private:
     // Per-frame data, one uniform buffer per frame in flight (std140 layout).

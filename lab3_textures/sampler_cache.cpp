@@ -39,10 +39,50 @@ VkSamplerCreateInfo sampler_info(const lab::SamplerDesc& desc, float anisotropy)
     return info;
 }
 
+lab::SamplerDesc choose_anisotropic(const lab::SamplerDesc& desc, VkPhysicalDeviceType type,
+                                    const VkPhysicalDeviceLimits& limits, bool sampler_anisotropy) {
+    using A = lab::SamplerDesc::Anisotropic;
+    if (desc.anisotropic != A::Auto) return desc;  // an explicit choice wins
+    lab::SamplerDesc chosen = desc;
+    if (type == VK_PHYSICAL_DEVICE_TYPE_CPU || !sampler_anisotropy) {
+        chosen.anisotropic = A::Probes;
+        return chosen;
+    }
+    // Integrated, discrete, virtual and "other" devices: the texture unit's own filter.
+    chosen.anisotropic = A::Sampler;
+    if (desc.anisotropy > 1) chosen.anisotropy = std::clamp(int(limits.maxSamplerAnisotropy), 1, 16);
+    return chosen;
+}
+
+const char* device_kind(VkPhysicalDeviceType type) {
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU device";
+    default: return "other device";
+    }
+}
+
+lab::SamplerDesc SamplerCache::resolve(const lab::SamplerDesc& desc) const {
+    return choose_anisotropic(desc, vk_.properties().deviceType, vk_.properties().limits,
+                              vk_.enabled_features().samplerAnisotropy);
+}
+
+std::string SamplerCache::auto_choice() const {
+    lab::SamplerDesc probe;  // anisotropy 16: what "auto" does where anisotropy is on
+    probe.anisotropic = lab::SamplerDesc::Anisotropic::Auto;
+    const lab::SamplerDesc chosen = resolve(probe);
+    const std::string by = chosen.anisotropic == lab::SamplerDesc::Anisotropic::Probes
+                               ? "probes"
+                               : "the sampler's anisotropy, up to " + std::to_string(chosen.anisotropy);
+    return "anisotropic: auto -> " + by + " (" + device_kind(vk_.properties().deviceType) + ")";
+}
+
 VkSampler SamplerCache::get(const lab::SamplerDesc& material) {
     // "anisotropic": "probes": the fragment shader filters anisotropically itself (lit.frag, probes()),
     // so the VkSampler has no hardware anisotropy: the plain trilinear one, shared with "anisotropy": 1.
-    lab::SamplerDesc desc = material;
+    lab::SamplerDesc desc = resolve(material);
     if (desc.anisotropic == lab::SamplerDesc::Anisotropic::Probes) {
         desc.anisotropy = 1;
         desc.anisotropic = lab::SamplerDesc::Anisotropic::Sampler;

@@ -17,6 +17,18 @@
 // The VkSamplerCreateInfo for `desc` with `anisotropy` (already clamped; 1 = off).
 VkSamplerCreateInfo sampler_info(const lab::SamplerDesc& desc, float anisotropy);
 
+// "anisotropic": "auto" made concrete for a device; any other setting comes back unchanged. Who
+// filters best depends on the device: a CPU rasterizer (lavapipe) pays per texel read, and its
+// sampler's anisotropic filter is slower and no closer to the truth than a few probes along the
+// footprint's long axis in the shader, so it gets the probes (`anisotropy` of them at most). A GPU's
+// texture unit filters anisotropically in hardware, closer to the truth than the probes, so it gets
+// the sampler at the degree it supports (up to 16), the same without the feature: probes then. With
+// "anisotropy": 1 both mean off. Lab 3's README, "What it costs", has the figures of both.
+lab::SamplerDesc choose_anisotropic(const lab::SamplerDesc& desc, VkPhysicalDeviceType type,
+                                    const VkPhysicalDeviceLimits& limits, bool sampler_anisotropy);
+// "CPU device", "discrete GPU", …: the device's kind, as the startup line and the panel name it.
+const char* device_kind(VkPhysicalDeviceType type);
+
 // A material whose anisotropy is done by probes in the shader gets the sampler without it.
 // Anisotropy is clamped to the device limit (or off when the device lacks the feature) with one
 // warning line each time a request is clamped.
@@ -24,6 +36,11 @@ class SamplerCache {
 public:
     explicit SamplerCache(const lab::VulkanContext& vk) : vk_(vk) {}
     VkSampler get(const lab::SamplerDesc& desc);
+    // choose_anisotropic for this cache's device.
+    lab::SamplerDesc resolve(const lab::SamplerDesc& desc) const;
+    // What "auto" picks on this device, one line: "anisotropic: auto -> probes (CPU device)" (ASCII:
+    // the panel's default font has no arrow).
+    std::string auto_choice() const;
     size_t size() const { return samplers_.size(); }
     // The anisotropy the device really uses for `requested` (1 = off).
     float effective_anisotropy(int requested) const;

@@ -10,4 +10,5 @@
 #include <string>
 #include <vector>
 
-bool textures_panel(Lighting& lighting, const std::vector<std::string>& warnings, float frame_ms);
+bool textures_panel(Lighting& lighting, const std::vector<std::string>& warnings, const std::string& auto_choice,
+                    float frame_ms);

@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
             camera_panel(app, camera, controls, reloader);
             lighting_panel(lighting);
             shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_map_renders());  // lab 4
-            if (textures_panel(lighting, renderer->texture_warnings(), app.average_frame_ms()) ||
+            if (textures_panel(lighting, renderer->texture_warnings(), renderer->anisotropic_auto(), app.average_frame_ms()) ||
                 !renderer->shadows_match(lighting)) {  // lab 4: or other lights cast shadows, other resolutions
                 // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
                 auto next = std::make_unique<Renderer>(app.vk(), app.target(), reloader.scene(), lighting, app.shader_dir());

@@ -10,7 +10,7 @@ namespace {
 const char* const kFilters[] = {"nearest", "linear"};
 const char* const kMipmaps[] = {"none", "nearest", "linear"};
 const char* const kWraps[] = {"repeat", "clamp", "mirror"};
-const char* const kAnisotropic[] = {"sampler", "probes"};
+const char* const kAnisotropic[] = {"sampler", "probes", "auto"};
 
 // A map path or "procedural:NAME"; Enter applies it, an empty field removes the map, an unknown
 // procedural name is ignored (a scene file would be rejected).
@@ -22,7 +22,8 @@ bool edit_map(const char* label, std::string& map) {
 }
 }  // namespace
 
-bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, float frame_ms) {
+bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, const std::string& auto_choice,
+                    float frame_ms) {
     ImGui::SetNextWindowPos(ImVec2(10.0f, ImGui::GetIO().DisplaySize.y - 330.0f), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Textures");
@@ -43,8 +44,9 @@ bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, float
             rebuild |= lab::ui::enum_combo("filter", m.sampler.filter, kFilters, 2);
             rebuild |= lab::ui::enum_combo("mipmaps", m.sampler.mipmaps, kMipmaps, 3);
             rebuild |= ImGui::SliderInt("anisotropy", &m.sampler.anisotropy, 1, 16);
-            rebuild |= lab::ui::enum_combo("anisotropic by", m.sampler.anisotropic, kAnisotropic, 2);
-            if (m.sampler.anisotropic == lab::SamplerDesc::Anisotropic::Probes && m.sampler.mipmaps == lab::SamplerDesc::Mipmaps::None)
+            rebuild |= lab::ui::enum_combo("anisotropic by", m.sampler.anisotropic, kAnisotropic, 3);
+            if (m.sampler.anisotropic == lab::SamplerDesc::Anisotropic::Auto) ImGui::TextDisabled("%s", auto_choice.c_str());
+            if (m.sampler.anisotropic != lab::SamplerDesc::Anisotropic::Sampler && m.sampler.mipmaps == lab::SamplerDesc::Mipmaps::None)
                 ImGui::TextDisabled("probes need mipmaps: plain lookups");
             rebuild |= lab::ui::enum_combo("wrap", m.sampler.wrap, kWraps, 3);
             rebuild |= ImGui::Checkbox("distorted sampling (albedo)", &m.distorted);

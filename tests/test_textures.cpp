@@ -116,6 +116,15 @@ TEST(TextureScene, AnisotropicProbes) {
     EXPECT_EQ(ui.probes(), 0);
 }
 
+TEST(TextureScene, AnisotropicAuto) {
+    // "anisotropic": "auto" stays "auto" in the scene: only the lab, which knows its device, decides.
+    const lab::MaterialDesc m = material(R"({"sampler": {"anisotropic": "auto", "anisotropy": 4, "mipmaps": "nearest"}})");
+    EXPECT_EQ(m.sampler.anisotropic, lab::SamplerDesc::Anisotropic::Auto);
+    EXPECT_EQ(m.sampler.anisotropy, 4);
+    EXPECT_EQ(m.sampler.mipmaps, lab::SamplerDesc::Mipmaps::Nearest);
+    EXPECT_EQ(m.sampler.probes(), 0);  // not resolved yet: no probes compiled from an undecided sampler
+}
+
 TEST(TextureScene, MistakesAreSceneErrors) {
     const auto expect = [](const std::string& body, const std::string& path, const std::string& reason) {
         const std::string e = error_of(body);
@@ -133,6 +142,8 @@ TEST(TextureScene, MistakesAreSceneErrors) {
     expect(R"({"sampler": {"anisotropic": "shader"}})", "materials.m.sampler.anisotropic", "unknown anisotropic filter");
     expect(R"({"sampler": {"anisotropic": "probes", "mipmaps": "none"}})", "materials.m.sampler.anisotropic",
            "\"probes\" needs mipmaps");
+    expect(R"({"sampler": {"anisotropic": "auto", "mipmaps": "none"}})", "materials.m.sampler.anisotropic",
+           "\"auto\" needs mipmaps");
     expect(R"({"sampling": "triple"})", "materials.m.sampling", "unknown sampling mode");
     expect(R"({"uv_scale": [1, 2, 3]})", "materials.m.uv_scale", "2 numbers");
     expect(R"({"uv_offset": [1, 2e7]})", "materials.m.uv_offset[1]", "1e6");
@@ -621,6 +632,62 @@ TEST(SamplerSettings, AnisotropyOnlyAboveOne) {
     const VkSamplerCreateInfo eight = sampler_info(d, 8.0f);
     EXPECT_EQ(eight.anisotropyEnable, VK_TRUE);
     EXPECT_EQ(eight.maxAnisotropy, 8.0f);
+}
+
+// --- "anisotropic": "auto": who filters, by VkPhysicalDeviceType (choose_anisotropic) ---------
+
+TEST(SamplerChoice, AutoPicksProbesOnACpuDeviceAndTheSamplerOnAGpu) {
+    using S = lab::SamplerDesc;
+    S automatic;
+    automatic.anisotropic = S::Anisotropic::Auto;
+    automatic.anisotropy = 4;
+    automatic.mipmaps = S::Mipmaps::Nearest;
+    VkPhysicalDeviceLimits limits{};
+    limits.maxSamplerAnisotropy = 16.0f;
+    // A CPU rasterizer: the shader's probes, as many as the material allows.
+    const S cpu = choose_anisotropic(automatic, VK_PHYSICAL_DEVICE_TYPE_CPU, limits, true);
+    EXPECT_EQ(cpu.anisotropic, S::Anisotropic::Probes);
+    EXPECT_EQ(cpu.anisotropy, 4);
+    EXPECT_EQ(cpu.probes(), 4);
+    EXPECT_EQ(cpu.mipmaps, S::Mipmaps::Nearest);
+    // Every GPU kind (and "other"): the texture unit's anisotropy at the device's degree.
+    for (VkPhysicalDeviceType type : {VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU, VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU,
+                                      VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU, VK_PHYSICAL_DEVICE_TYPE_OTHER}) {
+        const S gpu = choose_anisotropic(automatic, type, limits, true);
+        EXPECT_EQ(gpu.anisotropic, S::Anisotropic::Sampler) << device_kind(type);
+        EXPECT_EQ(gpu.anisotropy, 16) << device_kind(type);
+        EXPECT_EQ(gpu.probes(), 0) << device_kind(type);
+        EXPECT_EQ(gpu.mipmaps, S::Mipmaps::Nearest) << device_kind(type);
+    }
+    // A GPU whose limit is 8: 8, never a request the device would reject (or warn about).
+    limits.maxSamplerAnisotropy = 8.0f;
+    EXPECT_EQ(choose_anisotropic(automatic, VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, limits, true).anisotropy, 8);
+    // Without the samplerAnisotropy feature the probes are the only anisotropic filter left.
+    EXPECT_EQ(choose_anisotropic(automatic, VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, limits, false).anisotropic,
+              S::Anisotropic::Probes);
+    // "anisotropy": 1 is off on every device.
+    S off = automatic;
+    off.anisotropy = 1;
+    EXPECT_EQ(choose_anisotropic(off, VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, limits, true).anisotropy, 1);
+    EXPECT_EQ(choose_anisotropic(off, VK_PHYSICAL_DEVICE_TYPE_CPU, limits, true).probes(), 0);
+}
+
+TEST(SamplerChoice, ExplicitValuesWinOnEveryDevice) {
+    using S = lab::SamplerDesc;
+    VkPhysicalDeviceLimits limits{};
+    limits.maxSamplerAnisotropy = 16.0f;
+    for (S::Anisotropic by : {S::Anisotropic::Sampler, S::Anisotropic::Probes})
+        for (VkPhysicalDeviceType type : {VK_PHYSICAL_DEVICE_TYPE_OTHER, VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU,
+                                          VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU,
+                                          VK_PHYSICAL_DEVICE_TYPE_CPU}) {
+            S d;
+            d.anisotropic = by;
+            d.anisotropy = 3;
+            EXPECT_TRUE(choose_anisotropic(d, type, limits, true) == d) << device_kind(type);
+            EXPECT_EQ(choose_anisotropic(d, type, limits, true).anisotropic, by) << device_kind(type);
+        }
+    EXPECT_STREQ(device_kind(VK_PHYSICAL_DEVICE_TYPE_CPU), "CPU device");
+    EXPECT_STREQ(device_kind(VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU), "discrete GPU");
 }
 
 // --- the sampler cache (a real device, validation on) ---------------------------------------

@@ -442,11 +442,14 @@ SamplerDesc read_sampler(const Context& ctx, const json& value, const std::strin
     if (const json* v = s.find("wrap"))
         d.wrap = SamplerDesc::Wrap(s.choice(*v, "wrap", "wrap mode", {"repeat", "clamp", "mirror"}));
     if (const json* v = s.find("anisotropic"))
-        d.anisotropic = SamplerDesc::Anisotropic(s.choice(*v, "anisotropic", "anisotropic filter", {"sampler", "probes"}));
+        d.anisotropic = SamplerDesc::Anisotropic(s.choice(*v, "anisotropic", "anisotropic filter", {"sampler", "probes", "auto"}));
     s.finish();
-    // Each probe reads the level of its share of the footprint: without mipmaps there is only level 0.
+    // Each probe reads the level of its share of the footprint: without mipmaps there is only level 0
+    // ("auto" picks the probes on a CPU device, so it needs them too).
     if (d.anisotropic == SamplerDesc::Anisotropic::Probes && d.mipmaps == SamplerDesc::Mipmaps::None)
         fail(ctx, s.path_of("anisotropic"), "\"probes\" needs mipmaps (\"mipmaps\": \"linear\" or \"nearest\"): each probe reads a coarser level");
+    if (d.anisotropic == SamplerDesc::Anisotropic::Auto && d.mipmaps == SamplerDesc::Mipmaps::None)
+        fail(ctx, s.path_of("anisotropic"), "\"auto\" needs mipmaps (\"mipmaps\": \"linear\" or \"nearest\"): on a CPU device it means probes, which read coarser levels");
     return d;
 }
 

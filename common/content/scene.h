@@ -69,8 +69,9 @@ struct SamplerDesc {
     enum class Wrap { Repeat, Clamp, Mirror };
     // Who filters anisotropically: the VkSampler (maxAnisotropy) or the fragment shader, with up to
     // `anisotropy` probes along the footprint's major axis, each read as `mipmaps` says (linear:
-    // trilinear; nearest: bilinear on the nearest level). Not without mipmaps.
-    enum class Anisotropic { Sampler, Probes };
+    // trilinear; nearest: bilinear on the nearest level). Not without mipmaps. Auto: the lab picks
+    // one for its device (lab 3's sampler_cache.h, choose_anisotropic) before anything reads this.
+    enum class Anisotropic { Sampler, Probes, Auto };
     Filter filter = Filter::Linear;
     Mipmaps mipmaps = Mipmaps::Linear;
     int anisotropy = 16;  // 1 = off; with probes: the most probes per lookup
