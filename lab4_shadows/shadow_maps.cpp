@@ -16,8 +16,6 @@ constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAG
 const char* const kLightKinds[] = {"directional", "point", "spot"};  // LightDesc::Type's order
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
-// The most depth bias a caster gets, in texels along the light at its nearest point (render()).
-constexpr double kMostBiasTexels = 1.0;
 
 bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
 
@@ -239,14 +237,16 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
     // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled (grows
     // with how steeply the triangle's depth changes across a texel), both as the device computes
-    // them, and so at most kMostBiasTexels texels along the light at each caster (depthBiasClamp,
-    // in depth units: README, "Bias"). Unbounded, a device's bias can push a whole caster to the
-    // far end of the map (depth clamp: 1, no caster): a thin caster seen edge-on (huge slope), or
-    // a triangle crossing the light's plane (a float unit 2^(e − 23), e from its depth range).
+    // them, so bounded in world units (depthBiasClamp, README "Bias"): at most max(1, slope_bias)
+    // texels along the light at each caster, what the slope bias gives a face at 45°. Unbounded, a
+    // device's bias can push a whole caster to the far end of the map (depth clamp: 1, no caster):
+    // a thin caster seen edge-on (huge slope), a triangle crossing the light's plane (a float
+    // map's unit is 2^(e − 23), e from the triangle's depth range: unbounded there).
     std::vector<float> most_bias(objects_.size(), 0.0f);
+    const double most_texels = std::max(1.0, double(light.shadow.slope_bias));
     if (vk_.enabled_features().depthBiasClamp)
         for (size_t i = 0; i < objects_.size(); ++i)
-            if (in_map[i]) most_bias[i] = float(f.depth_of_texels(objects_[i].box, kMostBiasTexels / map.depth.size));
+            if (in_map[i]) most_bias[i] = float(f.depth_of_texels(objects_[i].box, most_texels / map.depth.size));
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp).
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
