@@ -100,4 +100,36 @@ TEST(LightFrustum, WideSpotsUseCubeMaps) {
     EXPECT_LT(std::abs(q.x) + std::abs(q.y), 1.0);
 }
 
+// The depth bias's bound (shadow_maps.cpp): depth_of_texels is the map's depth change over that
+// many texels' world size along the light, at the caster's nearest point, for every kind of map.
+// The bound sets how far a device's bias can move a caster, so it must be that step and no other.
+TEST(LightFrustum, DepthOfTexelsIsTheDepthStepAtTheCastersNearestPoint) {
+    const double texels = 1.0 / 2048.0;
+    const auto depth = [](const glm::dmat4& world_to_clip, const glm::dvec3& p) {
+        const glm::dvec4 c = world_to_clip * glm::dvec4(p, 1.0);
+        return c.z / c.w;
+    };
+    // Spot straight down from (0, 5, 0): the caster's nearest point 2.9 along the axis.
+    const Box slab = box({-0.5, 1.9, -0.5}, {0.5, 2.1, 0.5});
+    const LightFrustum spot = fit_spot({0, 5, 0}, {0, -1, 0}, 40.0, {slab});
+    const double step = texels * spot.texel * 2.9;
+    const glm::dmat4 s = spot.world_to_clip(spot.view_projection);
+    EXPECT_NEAR(spot.depth_of_texels(slab, texels), depth(s, {0, 5 - 2.9 - step, 0}) - depth(s, {0, 5 - 2.9, 0}), 1e-3 * spot.depth_of_texels(slab, texels));
+    // Point light at the origin, the caster 4 … 5 along +X: face 0, depth along x from 4.
+    const Box side = box({4, -1, -1}, {5, 1, 1});
+    const LightFrustum point = fit_point({0, 0, 0}, {side});
+    const glm::dmat4 x = point.world_to_clip(point.faces[0]);
+    EXPECT_NEAR(point.depth_of_texels(side, texels), depth(x, {4 + texels * point.texel * 4, 0, 0}) - depth(x, {4, 0, 0}),
+                1e-3 * point.depth_of_texels(side, texels));
+    // Directional down −Y: depth is linear, one step anywhere.
+    const LightFrustum sun = fit_directional({0, -1, 0}, {slab}, {slab, box({-5, -0.1, -5}, {5, 0, 5})});
+    const glm::dmat4 d = sun.world_to_clip(sun.view_projection);
+    EXPECT_NEAR(sun.depth_of_texels(slab, texels), depth(d, {0, 1.0 - texels * sun.texel, 0}) - depth(d, {0, 1.0, 0}),
+                1e-6);
+    // Twice the texels, twice the step; a caster twice as far, half the step (perspective).
+    EXPECT_NEAR(point.depth_of_texels(side, 2 * texels), 2 * point.depth_of_texels(side, texels), 1e-12);
+    const Box farther = box({8, -1, -1}, {9, 1, 1});
+    EXPECT_NEAR(point.depth_of_texels(farther, texels), 0.5 * point.depth_of_texels(side, texels), 1e-9);
+}
+
 }  // namespace
