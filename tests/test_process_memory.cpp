@@ -1,5 +1,5 @@
 // test_process_memory.cpp — common/dev/process_memory.h really changes how glibc's heap behaves
-// (the window soak found both settings; a build where they silently compile to nothing must fail).
+// (the window soak found it; a build where it silently compiles to nothing must fail).
 #include "process_memory.h"
 
 #include <gtest/gtest.h>
@@ -27,17 +27,6 @@ long resident_kib() {
     return resident * 4;  // 4 KiB pages
 }
 }  // namespace
-
-// glibc raises its mmap threshold when an mmapped block is freed (here: to 1 MiB), after which a
-// 200 KiB block would come from the heap. With the threshold fixed at 128 KiB it is mmapped.
-TEST(ProcessMemory, BigBlocksStayOutOfTheHeap) {
-    lab::dev::keep_big_blocks_out_of_the_heap();
-    std::free(kept(std::malloc(1 << 20)));
-    const int mmapped_before = mallinfo2().hblks;
-    void* block = kept(std::malloc(200 * 1024));
-    EXPECT_EQ(mallinfo2().hblks, mmapped_before + 1) << "a 200 KiB block came from the heap";
-    std::free(block);
-}
 
 // 32 MiB of small blocks freed behind one that stays: free() cannot shrink the heap past the live
 // block, so the pages stay resident until give_back_free_memory() returns them.

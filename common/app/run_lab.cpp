@@ -5,8 +5,6 @@
 #include "cli.h"
 #include "vk_check.h"
 
-#include "process_memory.h"  // dev layer: glibc heap settings
-
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -18,7 +16,6 @@ int run_lab(int argc, char** argv, const LabInfo& info,
             const std::function<void(LabApp& app, const Scene& scene)>& body) {
     const std::string name = info.name;
     int validation_messages = 0;
-    dev::keep_big_blocks_out_of_the_heap();
     try {
         Options options = parse_command_line(argc, argv, info.default_scene);
         if (options.help || options.help_dev) {
