@@ -19,9 +19,10 @@ lab::Handle<VkRenderPass> make_offscreen_pass(const lab::VulkanContext& vk, VkFo
     VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkAttachmentReference depth_ref{color ? 1u : 0u, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
     if (color)
+        // From the layout it is read in, not UNDEFINED: a pass over part of the image keeps the rest.
         attachments.push_back({0, color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
                                VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-                               VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
     // Without colour the depth is the map and is kept; with colour it only finds the nearest
     // translucent face and is dropped.
     attachments.push_back({0, depth, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR,
@@ -110,8 +111,8 @@ LayeredTarget& LayeredTarget::operator=(LayeredTarget&& other) noexcept {
     return *this;
 }
 
-void LayeredTarget::begin(VkCommandBuffer cmd, uint32_t i, float depth) const {
-    begin_offscreen_pass(cmd, pass, framebuffers[i], size, color, depth);
+void LayeredTarget::begin(VkCommandBuffer cmd, uint32_t i, float depth, VkRect2D area) const {
+    begin_offscreen_pass(cmd, pass, framebuffers[i], size, color, depth, area);
 }
 
 void LayeredTarget::clear(VkCommandBuffer cmd) const {
@@ -140,19 +141,19 @@ LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass p
 }
 
 void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color,
-                          float depth) {
+                          float depth, VkRect2D area) {
+    if (area.extent.width == 0 || area.extent.height == 0) area = {{0, 0}, {size, size}};
     VkClearValue clears[2];
     clears[0].color = {{1.0f, 1.0f, 0.0f, 0.0f}};  // transmittance 1, nearest translucent depth 1
     clears[color ? 1 : 0].depthStencil = {depth, 0};
     VkRenderPassBeginInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     info.renderPass = pass;
     info.framebuffer = framebuffer;
-    info.renderArea = {{0, 0}, {size, size}};
+    info.renderArea = area;
     info.clearValueCount = color ? 2 : 1;
     info.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &info, VK_SUBPASS_CONTENTS_INLINE);
     const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, {size, size}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdSetScissor(cmd, 0, 1, &area);  // nothing drawn outside the render area
 }

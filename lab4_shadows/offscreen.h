@@ -14,8 +14,9 @@
 // Does the device support `features` for `format` (optimal tiling)?
 bool format_supports(const lab::VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features);
 
-// A one-subpass render pass into `color` (VK_FORMAT_UNDEFINED: none) and `depth`, both cleared.
-// The colour ends SHADER_READ_ONLY; the depth is kept and ends DEPTH_STENCIL_READ_ONLY when there
+// A one-subpass render pass into `color` (VK_FORMAT_UNDEFINED: none) and `depth`, both cleared
+// (over the render area). The colour starts and ends SHADER_READ_ONLY (what lies outside the
+// render area is kept: move a new image there first); the depth is kept and ends DEPTH_STENCIL_READ_ONLY when there
 // is no colour (a depth map), else it is dropped. Its dependencies order the pass after earlier
 // shader reads of the same images (earlier frames) and before the vertex / fragment shaders that
 // read them next.
@@ -43,8 +44,9 @@ struct LayeredTarget {
     uint32_t layers() const { return uint32_t(framebuffers.size()); }
     VkImageView layer(uint32_t i) const { return layer_views.empty() ? image.view.get() : layer_views[i].get(); }
     VkImageView sampled() const { return faces ? faces.get() : image.view.get(); }  // what shaders read
-    // begin_offscreen_pass() on layer `i`: cleared, viewport and scissor set.
-    void begin(VkCommandBuffer cmd, uint32_t i, float depth = 1.0f) const;
+    // begin_offscreen_pass() on layer `i`: cleared, viewport and scissor set; `area` (extent 0:
+    // the whole layer) limits the render area and the scissor.
+    void begin(VkCommandBuffer cmd, uint32_t i, float depth = 1.0f, VkRect2D area = {}) const;
     // Every layer cleared (a pass begun and ended on each), e.g. before anything samples it.
     void clear(VkCommandBuffer cmd) const;
 };
@@ -55,10 +57,11 @@ LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass p
                                     VkImageUsageFlags usage, VkImageAspectFlags aspect,
                                     const std::vector<VkImageView>& more = {});
 
-// Begins `pass` on `framebuffer` (size²): colour (if any) cleared to (1, 1, 0, 0), depth to
-// `depth` (1: nothing there); viewport and scissor cover the whole square.
+// Begins `pass` on `framebuffer` (size²) over `area` (extent 0: the whole square): colour (if any)
+// cleared to (1, 1, 0, 0), depth to `depth` (1: nothing there) there; the viewport covers the whole
+// square, the scissor `area`.
 void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color,
-                          float depth = 1.0f);
+                          float depth = 1.0f, VkRect2D area = {});
 
 // A sampler for depth maps: nearest or linear, optionally comparing the lookup's reference depth
 // with the stored one (which compare op, which border colour outside the map: exercise

@@ -247,9 +247,13 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     if (vk_.enabled_features().depthBiasClamp)
         for (size_t i = 0; i < objects_.size(); ++i)
             if (in_map[i]) most_bias[i] = float(f.depth_of_texels(objects_[i].box, most_texels / map.depth.size));
-    // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp).
+    // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
+    // and their boxes, whose footprint on each face is all its transmittance pass draws.
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
+    std::vector<Box> translucent;
+    for (size_t i = 0; i < objects_.size(); ++i)
+        if (in_map[i] && translucent_material(lighting, objects_[i].material)) translucent.push_back(objects_[i].box);
 
     // The panel's GPU time per map: "map: spot 1" (light 1), its transmittance map's beside it.
     const std::string pass = std::string("map: ") + kLightKinds[int(light.type)] + " " + std::to_string(map.light);
@@ -265,6 +269,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         if (translucent_->active()) {
             const lab::TimedPass timed(timer, cmd, "translucent " + pass);
             translucent_->render(cmd, map.translucent, face, map.cube,
+                                 TranslucentShadows::footprint(world_to_clip, translucent, map.depth.size),
                                  [&] { draw_casters(cmd, world_to_clip, lighting, true, in_map, nullptr, {}); });
         }
     }

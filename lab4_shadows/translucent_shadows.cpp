@@ -5,9 +5,22 @@
 #include "image.h"
 #include "shader.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace {
 // How far behind the nearest translucent caster a receiver must be to be behind it, in texels.
 constexpr double kTranslucentTexels = 2.0;
+
+// The smallest rectangle holding both (an empty one: extent 0).
+VkRect2D merged(VkRect2D a, VkRect2D b) {
+    if (a.extent.width == 0 || a.extent.height == 0) return b;
+    if (b.extent.width == 0 || b.extent.height == 0) return a;
+    const int32_t x0 = std::min(a.offset.x, b.offset.x), y0 = std::min(a.offset.y, b.offset.y);
+    const int32_t x1 = std::max(a.offset.x + int32_t(a.extent.width), b.offset.x + int32_t(b.extent.width));
+    const int32_t y1 = std::max(a.offset.y + int32_t(a.extent.height), b.offset.y + int32_t(b.extent.height));
+    return {{x0, y0}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
+}
 }  // namespace
 
 TranslucentShadows::TranslucentShadows(const lab::VulkanContext& vk, VkFormat depth_format, bool active,
@@ -44,15 +57,72 @@ TranslucentShadows::Map TranslucentShadows::make_map(uint32_t resolution, bool c
     // One scratch depth serves every face (the faces are rendered one after the other).
     m.scratch_depth = create_image_2d(vk_, {resolution, resolution}, depth_format_,
                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-    const VkImageUsageFlags sampled_color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    m.transmittance = create_layered_target(vk_, pass_, resolution, cube, format_, sampled_color, VK_IMAGE_ASPECT_COLOR_BIT,
+    // TRANSFER_DST: the first clear (below) is a copy-engine clear.
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    m.transmittance = create_layered_target(vk_, pass_, resolution, cube, format_, usage, VK_IMAGE_ASPECT_COLOR_BIT,
                                             {m.scratch_depth.view});
+    // The pass keeps what lies outside its render area, so it starts from the layout the lookup
+    // reads (offscreen.h): every face is cleared whole to "nothing translucent" once, here, and
+    // left in that layout.
+    vk_.run_once([&](VkCommandBuffer cmd) {
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = m.transmittance.image.image.get();
+        b.subresourceRange = all;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // its contents dropped
+        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
+        const VkClearColorValue nothing{{1.0f, 1.0f, 0.0f, 0.0f}};  // as begin_offscreen_pass clears
+        vkCmdClearColorImage(cmd, b.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nothing, 1, &all);
+        b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;  // the lookup; the pass's own dependency orders its writes
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                             1, &b);
+    });
+    m.drawn.assign(m.transmittance.layers(), VkRect2D{});
     return m;
 }
 
-void TranslucentShadows::render(VkCommandBuffer cmd, const Map& map, uint32_t face, bool cube,
+VkRect2D TranslucentShadows::footprint(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size) {
+    const VkRect2D whole{{0, 0}, {size, size}};
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const lab::Box& box : boxes) {
+        int behind = 0;  // corners at or behind the light's plane (w ≤ 0)
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec4 p = world_to_clip * glm::dvec4(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
+                                                            corner & 4 ? box.hi.z : box.lo.z, 1.0);
+            if (p.w <= 1e-9) {
+                ++behind;
+                continue;
+            }
+            // The viewport maps x, y in [−1, 1] onto [0, size] (the box's projection holds its
+            // contents': projection keeps straight lines straight in front of the plane).
+            x0 = std::min(x0, (p.x / p.w + 1.0) * 0.5 * size), x1 = std::max(x1, (p.x / p.w + 1.0) * 0.5 * size);
+            y0 = std::min(y0, (p.y / p.w + 1.0) * 0.5 * size), y1 = std::max(y1, (p.y / p.w + 1.0) * 0.5 * size);
+        }
+        if (behind == 8) continue;  // wholly behind: clipped away (w > 0 holds with depth clamp too)
+        if (behind > 0) return whole;  // across the plane: its projection has no bound
+    }
+    // One texel to spare on each side (the pass rasterizes in float from a float matrix).
+    const double s = size;
+    const double left = std::clamp(std::floor(x0) - 1.0, 0.0, s), right = std::clamp(std::ceil(x1) + 1.0, 0.0, s);
+    const double top = std::clamp(std::floor(y0) - 1.0, 0.0, s), bottom = std::clamp(std::ceil(y1) + 1.0, 0.0, s);
+    if (!(right > left && bottom > top)) return VkRect2D{};  // nothing in front, or all off the map
+    return {{int32_t(left), int32_t(top)}, {uint32_t(right - left), uint32_t(bottom - top)}};
+}
+
+void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,
                                 const std::function<void()>& draw_translucent) const {
-    map.transmittance.begin(cmd, face);
+    // Where to draw, and where the last render drew and must be cleared back to r = g = 1.
+    const VkRect2D pass_area = merged(area, map.drawn[face]);
+    map.drawn[face] = area;
+    if (pass_area.extent.width == 0 || pass_area.extent.height == 0) return;
+    map.transmittance.begin(cmd, face, 1.0f, pass_area);
     for (const auto* pipeline : {&nearest_[cube], &multiply_[cube]}) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
         draw_translucent();

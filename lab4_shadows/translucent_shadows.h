@@ -5,16 +5,22 @@
 // transmittance map of the same size: for each texel's ray from the light, r = the product of
 // 1 − α over the translucent casters' front faces, g = the depth of the nearest one. The lookup
 // (shaders/lab4_shadows/translucent_shadows.glsl) multiplies a tap's light by r when the point
-// lies behind that nearest face. Only scenes with translucent casters render these maps.
+// lies behind that nearest face. Only scenes with translucent casters render these maps, and
+// only where those casters are: the rest of the map keeps "nothing translucent" (r = g = 1), so a
+// glass ball a tenth of the map across costs about a hundredth of a full-map pass.
 #pragma once
 
+#include "bounds.h"
 #include "offscreen.h"
 #include "pipeline_builder.h"
 #include "vk_context.h"
 
+#include <glm/glm.hpp>
+
 #include <array>
 #include <functional>
 #include <string>
+#include <vector>
 
 class TranslucentShadows {
 public:
@@ -28,13 +34,21 @@ public:
     struct Map {
         lab::Image scratch_depth;    // the depth test between translucent faces, not kept
         LayeredTarget transmittance;  // r = Π(1 − α), g = the nearest translucent depth; a layer per face
+        std::vector<VkRect2D> drawn;  // [face]: where the last render drew (elsewhere r = g = 1)
     };
-    // A transmittance map of `resolution`² (a cube: six faces) beside a depth map.
+    // A transmittance map of `resolution`² (a cube: six faces) beside a depth map, cleared.
     Map make_map(uint32_t resolution, bool cube) const;
 
-    // Face `face` of `map`: begins its pass (r cleared to 1, g to depth 1) and, for each of the two
-    // pipelines — nearest depth into g, then r ×= 1 − α — binds it and calls `draw_translucent()`.
-    void render(VkCommandBuffer cmd, const Map& map, uint32_t face, bool cube,
+    // The texels of a `size`² map that the casters in `boxes` (world space) can cover through
+    // `world_to_clip`, with a texel to spare; the whole map when a box reaches behind the
+    // light's plane (perspective), none when no box is in front of it.
+    static VkRect2D footprint(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size);
+
+    // Face `face` of `map`: begins its pass over `area` (the footprint of its translucent casters)
+    // and what the last render drew — r cleared to 1, g to depth 1 there, the rest kept — and, for
+    // each of the two pipelines — nearest depth into g, then r ×= 1 − α — binds it and calls
+    // `draw_translucent()`. Nothing at all when both are empty.
+    void render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,
                 const std::function<void()>& draw_translucent) const;
 
     // How far (in depth) a receiver must lie behind the nearest translucent caster to be behind
