@@ -270,9 +270,10 @@ void LabApp::gpu_times_ui() {
     }
     float sum = 0.0f;
     for (const auto& [name, ms] : shown_gpu_ms_) sum += ms;
-    // A fold of its own (the label changes with the sum; "###" keeps its id, and its state).
+    // A fold of its own, closed at first so the panels keep their places (the label changes with
+    // the sum; "###" keeps its id, and its state). Open it to see each pass.
     const std::string label = "GPU " + format_ms(sum) + " ms/frame###gpu passes";
-    const bool open = ImGui::TreeNodeEx(label.c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    const bool open = ImGui::TreeNodeEx(label.c_str(), ImGuiTreeNodeFlags_None);
     // The panel was sized to its first frame, before any pass was timed: refit its height when
     // the lines below change, or they would push the panel's own widgets out of sight.
     const size_t lines = open ? shown_gpu_ms_.size() : 0;
