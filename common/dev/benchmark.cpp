@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace lab::dev {
 namespace {
@@ -14,7 +15,25 @@ double percentile(std::vector<double> values, double p) {
     return values[std::min(rank, values.size() - 1)];
 }
 
+const char* type_name(VkPhysicalDeviceType type) {
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
+    default: return "other";
+    }
+}
+
 }  // namespace
+
+std::string device_fields(const VkPhysicalDeviceProperties& device) {
+    std::string name = device.deviceName;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    if (name.empty()) name = "unnamed";
+    for (char& c : name)
+        if (c == ' ' || c == '\t' || c == '=') c = '_';  // one word, so `key=value` parsers keep it whole
+    return "device=" + name + " device_type=" + type_name(device.deviceType);
+}
 
 Benchmark::Benchmark(int frames) : frames_(std::max(frames, 0)), last_done_(Clock::now()) {
     frame_ms_.reserve(size_t(frames_));
@@ -28,13 +47,14 @@ bool Benchmark::frame_finished(int index) {
     return index == kWarmupFrames - 1;
 }
 
-void Benchmark::print(const std::string& lab, uint32_t width, uint32_t height, const char* mode) const {
+void Benchmark::print(const std::string& lab, uint32_t width, uint32_t height, const char* mode,
+                      const VkPhysicalDeviceProperties& device) const {
     double mean = 0.0;
     for (double v : frame_ms_) mean += v / double(frame_ms_.size());
-    std::printf("benchmark lab=%s width=%u height=%u frames=%zu min_ms=%.3f median_ms=%.3f p95_ms=%.3f mean_ms=%.3f%s%s\n",
+    std::printf("benchmark lab=%s width=%u height=%u frames=%zu min_ms=%.3f median_ms=%.3f p95_ms=%.3f mean_ms=%.3f%s%s %s\n",
                 lab.c_str(), width, height, frame_ms_.size(), *std::min_element(frame_ms_.begin(), frame_ms_.end()),
                 percentile(frame_ms_, 50.0), percentile(frame_ms_, 95.0), mean, mode ? " target=" : "",
-                mode ? mode : "");
+                mode ? mode : "", device_fields(device).c_str());
     std::fflush(stdout);
 }
 

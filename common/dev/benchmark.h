@@ -5,7 +5,12 @@
 // kWarmupFrames are left out (pipeline compilation, caches). The report is one machine-readable
 // line of key=value pairs for scripts and bench/:
 //   benchmark lab=… width=… height=… frames=… min_ms=… median_ms=… p95_ms=… mean_ms=… [target=window]
+//             device=… device_type=cpu|integrated|discrete|virtual|other
+// A time means little without the device that made it: the fastest settings on lavapipe (a CPU) are
+// not those of a GPU. The device's name has its spaces as '_', so every value is one word.
 #pragma once
+
+#include <vulkan/vulkan.h>
 
 #include <chrono>
 #include <cstdint>
@@ -19,6 +24,9 @@ inline double ms_between(std::chrono::steady_clock::time_point a, std::chrono::s
     return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+// The report's `device=… device_type=…` fields (without a leading space).
+std::string device_fields(const VkPhysicalDeviceProperties& device);
+
 class Benchmark {
 public:
     static constexpr int kWarmupFrames = 3;
@@ -31,8 +39,9 @@ public:
     // Frame number `index` (from 0) has finished on the GPU. True when this ended the warm-up.
     bool frame_finished(int index);
     size_t timed_frames() const { return frame_ms_.size(); }
-    // The report line on stdout (`mode`: nullptr, or "window").
-    void print(const std::string& lab, uint32_t width, uint32_t height, const char* mode) const;
+    // The report line on stdout (`mode`: nullptr, or "window"; `device`: what ran it).
+    void print(const std::string& lab, uint32_t width, uint32_t height, const char* mode,
+               const VkPhysicalDeviceProperties& device) const;
 
 private:
     using Clock = std::chrono::steady_clock;

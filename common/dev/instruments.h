@@ -54,6 +54,7 @@ public:
 
 private:
     InstrumentSettings settings_;
+    VkPhysicalDeviceProperties device_;  // names the device in the benchmark's line
     Benchmark benchmark_;
     FramePhases phases_;
     GpuPassTimer gpu_passes_;
