@@ -15,7 +15,7 @@ import unittest
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 
-from tradeoff_lib import check, cli, knobs, measure, plot, results, scenes  # noqa: E402
+from tradeoff_lib import check, cli, device, knobs, measure, plot, results, scenes  # noqa: E402
 
 
 def measured(name, cpu_ms, error, group="g", spread=0.0, key="mean_abs", **roles):
@@ -69,19 +69,23 @@ class ParetoFront(unittest.TestCase):
 
 class CsvRows(unittest.TestCase):
     def test_columns(self):
-        self.assertEqual(len(results.CSV_FIELDS), 24)
+        self.assertEqual(len(results.CSV_FIELDS), 28)
         self.assertEqual(results.CSV_FIELDS[:3], ["lab", "group", "config"])
         self.assertEqual(results.CSV_FIELDS[14:], ["mean_abs", "p99_abs", "max_abs", "over_2", "mean_de2000",
                                                    "p99_de2000", "wrong_side_pct", "shadow_mae", "on_front",
-                                                   "dominated_by"])
+                                                   "dominated_by", "device", "device_type", "lp_num_threads",
+                                                   "cpu_model"])
 
-    def row(self):
+    LAVAPIPE = {"device": "llvmpipe (LLVM 15.0.6, 256 bits)", "device_type": "cpu", "lp_num_threads": "2",
+                "cpu_model": "AMD EPYC 7B13"}
+
+    def row(self, on=None):
         c = knobs.config("all curved at 32", "tessellation", {}, knob=32, default=True, seed="seed 000")
         c.update(median_ms=1.23456, p95_ms=2.0, spread_ms=0.1, best_ms=1.2, cpu_ms=3.14159, cpu_spread_ms=0.25,
                  times=[1.234, 5.678], on_front="yes", dominated_by="",
                  errors={"mean_abs": 0.25, "p99_abs": 4.0, "max_abs": 141.0, "over_2": 1.5, "mean_de2000": 0.123456,
                          "p99_de2000": 2.0})
-        return results.csv_row("lab1_camera", c, 2)
+        return results.csv_row("lab1_camera", c, 2, on)
 
     def test_row(self):
         row = self.row()
@@ -91,6 +95,35 @@ class CsvRows(unittest.TestCase):
         self.assertEqual(row["round_ms"], "1.23;5.68")
         self.assertEqual((row["mean_abs"], row["mean_de2000"], row["max_abs"]), ("0.2500", "0.1235", "141.0000"))
         self.assertEqual((row["wrong_side_pct"], row["shadow_mae"]), ("", ""))  # lab 4's figures only
+        self.assertEqual((row["device"], row["device_type"], row["lp_num_threads"], row["cpu_model"]), ("", "", "", ""))
+        row = self.row(self.LAVAPIPE)
+        self.assertEqual((row["device"], row["device_type"], row["lp_num_threads"], row["cpu_model"]),
+                         ("llvmpipe (LLVM 15.0.6, 256 bits)", "cpu", "2", "AMD EPYC 7B13"))
+
+    def test_device_round_trip(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "lab.csv")
+            results.write_rows(path, [self.row(self.LAVAPIPE)])
+            c = results.from_row(results.read_rows(path)[0], {})
+        self.assertEqual(c["device"], self.LAVAPIPE)
+        self.assertEqual(device.label(c["device"]), "llvmpipe (LLVM 15.0.6, 256 bits) (cpu; AMD EPYC 7B13, LP_NUM_THREADS=2)")
+
+    def test_old_csv_without_device(self):
+        # A CSV written before the device was recorded (the committed ones): readable, "not recorded".
+        old = "lab,group,config,cpu_ms,cpu_spread_ms,median_ms,p95_ms,spread_ms,best_ms,rounds,mean_abs,on_front,dominated_by\n" \
+              "lab1_camera,tessellation,sphere 8,1.5,0.1,2.0,2.5,0.2,1.9,3,0.7,yes,\n"
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "old.csv")
+            with open(path, "w") as f:
+                f.write(old)
+            rows = results.read_rows(path)
+        c = results.from_row(rows[0], {})
+        self.assertEqual((c["cpu_ms"], c["errors"]), (1.5, {"mean_abs": 0.7}))
+        self.assertEqual(c["device"], {"device": "", "device_type": "", "lp_num_threads": "", "cpu_model": ""})
+        self.assertEqual(device.label(c["device"]), "device not recorded")
+        self.assertEqual(device.problems(rows), ["sphere 8: no device",
+                                                 "sphere 8: device_type '' is not one of "
+                                                 "['cpu', 'integrated', 'discrete', 'virtual', 'other']"])
 
     def test_round_trip(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -114,12 +147,43 @@ class CsvRows(unittest.TestCase):
 class Parsing(unittest.TestCase):
     BENCHMARK = ("lab1_camera: Vulkan 1.3, llvmpipe\n"
                  "benchmark lab=lab1_camera width=64 height=36 frames=3 min_ms=0.635 median_ms=0.657 "
-                 "p95_ms=0.717 mean_ms=0.670\n")
+                 "p95_ms=0.717 mean_ms=0.670 device=llvmpipe_(LLVM_15.0.6,_256_bits) device_type=cpu\n")
+    CPUINFO = ("processor\t: 0\nvendor_id\t: AuthenticAMD\nmodel name\t: AMD EPYC 7B13  64-Core Processor\n"
+               "processor\t: 1\nmodel name\t: AMD EPYC 7B13  64-Core Processor\n")
 
     def test_benchmark_line(self):
         self.assertEqual(measure.parse_fields(self.BENCHMARK, "benchmark"),
                          {"lab": "lab1_camera", "width": "64", "height": "36", "frames": "3", "min_ms": "0.635",
-                          "median_ms": "0.657", "p95_ms": "0.717", "mean_ms": "0.670"})
+                          "median_ms": "0.657", "p95_ms": "0.717", "mean_ms": "0.670",
+                          "device": "llvmpipe_(LLVM_15.0.6,_256_bits)", "device_type": "cpu"})
+
+    def test_window_benchmark_line(self):
+        line = ("benchmark lab=lab2_lighting width=1280 height=720 frames=300 min_ms=0.2 median_ms=0.237 p95_ms=0.3 "
+                "mean_ms=0.25 target=window device=NVIDIA_H200 device_type=discrete\n")
+        fields = measure.parse_fields(line, "benchmark")
+        self.assertEqual((fields["target"], fields["device"], fields["device_type"]),
+                         ("window", "NVIDIA_H200", "discrete"))
+
+    def test_cpu_model(self):
+        self.assertEqual(device.cpu_model(self.CPUINFO), "AMD EPYC 7B13 64-Core Processor")
+        self.assertEqual(device.cpu_model("processor\t: 0\nCPU part\t: 0xd0c\n"), "")  # no model name (arm)
+
+    def test_device_of_a_cpu_run(self):
+        fields = measure.parse_fields(self.BENCHMARK, "benchmark")
+        self.assertEqual(device.of_benchmark(fields, {"LP_NUM_THREADS": "2"}, "AMD EPYC 7B13"),
+                         {"device": "llvmpipe (LLVM 15.0.6, 256 bits)", "device_type": "cpu",
+                          "lp_num_threads": "2", "cpu_model": "AMD EPYC 7B13"})
+
+    def test_device_of_a_gpu_run(self):
+        # A GPU: LP_NUM_THREADS and the CPU do not make its figures, so they are not recorded.
+        fields = {"median_ms": "0.237", "device": "NVIDIA_H200", "device_type": "discrete"}
+        d = device.of_benchmark(fields, {"LP_NUM_THREADS": "2"}, "AMD EPYC 7B13")
+        self.assertEqual(d, {"device": "NVIDIA H200", "device_type": "discrete", "lp_num_threads": "", "cpu_model": ""})
+        self.assertEqual(device.label(d), "NVIDIA H200 (discrete)")
+
+    def test_a_line_without_device_exits(self):
+        with self.assertRaises(SystemExit):
+            device.of_benchmark({"median_ms": "0.657"}, {}, "")
 
     def test_first_line_with_the_prefix(self):
         text = "note median_ms=9\nstarting benchmark median_ms=8\nbenchmark median_ms=1\nbenchmark median_ms=2\n"
@@ -277,7 +341,9 @@ class QuickCheck(unittest.TestCase):
         wr = csv.DictWriter(out, fieldnames=results.CSV_FIELDS)
         wr.writeheader()
         for i in range(n):
-            wr.writerow(dict({k: "1.0" for k in results.CSV_FIELDS}, config=f"c{i}", default="yes" if i == 0 else ""))
+            wr.writerow(dict({k: "1.0" for k in results.CSV_FIELDS}, config=f"c{i}", default="yes" if i == 0 else "",
+                             device="llvmpipe (LLVM 15.0.6, 256 bits)", device_type="cpu", lp_num_threads="2",
+                             cpu_model="AMD EPYC 7B13"))
         return list(csv.DictReader(io.StringIO(out.getvalue())))
 
     def test_good_csv(self):
@@ -291,6 +357,20 @@ class QuickCheck(unittest.TestCase):
         self.assertEqual(check.csv_problems(rows, 3),
                          ["2 rows for 3 configurations", "c1: cpu_ms = nan", "c1: mean_abs = '' is not a number",
                           "no default configuration"])
+
+    def test_device_columns(self):
+        rows = self.rows(3)
+        rows[0]["device"] = ""
+        rows[1]["cpu_model"] = ""
+        rows[2].update(device="NVIDIA H200", device_type="discrete", lp_num_threads="", cpu_model="")
+        self.assertEqual(check.csv_problems(rows, 3),
+                         ["c0: no device", "c1: a CPU device without LP_NUM_THREADS or CPU model",
+                          "several devices in one CSV: NVIDIA H200 (discrete); device not recorded; "
+                          "llvmpipe (LLVM 15.0.6, 256 bits) (cpu; , LP_NUM_THREADS=2)"])
+        rows = self.rows(1)
+        rows[0]["device_type"] = "gpu"
+        self.assertEqual(check.csv_problems(rows, 1),
+                         ["c0: device_type 'gpu' is not one of ['cpu', 'integrated', 'discrete', 'virtual', 'other']"])
 
     def test_series_must_fall(self):
         ok = [measured("8", 1, 0.25, knob=8, series="all"), measured("16", 2, 0.08, knob=16, series="all")]
@@ -316,10 +396,10 @@ class CommandLine(unittest.TestCase):
 
     def test_title_note(self):
         a = cli.parse_args(["lab1_camera", "--quick"])
-        self.assertEqual(cli.title_note("lab1_camera", a), "320x180, LP_NUM_THREADS=2, 1 interleaved rounds x 3 frames "
-                                                         "on a shared 2-core machine; bars: round-to-round spread")
+        self.assertEqual(cli.title_note("lab1_camera", a), "320x180, 1 interleaved rounds x 3 frames; "
+                                                         "bars: round-to-round spread")
         a = cli.parse_args(["lab4_shadows"])
-        self.assertTrue(cli.title_note("lab4_shadows", a).startswith("640x360, LP_NUM_THREADS=2, 3 interleaved"))
+        self.assertTrue(cli.title_note("lab4_shadows", a).startswith("640x360, 3 interleaved"))
         self.assertTrue(cli.title_note("lab4_shadows", a).endswith(
             "; time: a frame that re-renders every shadow map (--dev-animate-lights), error: the static picture"))
 

@@ -1,12 +1,13 @@
 """The quick run's checks (--quick, CTest tradeoff_quick_*): data, never timing.
 
 The CSV must be well-formed (the header, one row per configuration, finite non-negative
-numbers, a frame time, a default); along every tessellation series the error must grow when
+numbers, a frame time, a default, one device named on every row); along every tessellation series the error must grow when
 the tessellation drops; and the knob table's `order` pairs (lab 3: trilinear below nearest)
 must hold.
 """
 import math
 
+from . import device
 from .knobs import KNOBS
 from .results import CSV_FIELDS, ERROR_KEYS, read_rows
 
@@ -33,7 +34,7 @@ def csv_problems(rows, n_configs):
             problems.append(f"{row['config']}: no frame time")
     if sum(1 for r in rows if r["default"] == "yes") < 1:
         problems.append("no default configuration")
-    return problems
+    return problems + device.problems(rows)
 
 
 def series_problems(configs):

@@ -7,7 +7,7 @@ import shutil
 import sys
 import time
 
-from . import knobs
+from . import device, knobs
 from .check import check
 from .heatmaps import heatmaps
 from .measure import measure
@@ -38,7 +38,8 @@ def parse_args(argv=None):
     ap.add_argument("--out-dir", help="default: docs/tradeoffs (quick: BUILD/tradeoff_quick)")
     ap.add_argument("--frames", type=int, help="benchmark frames per run (default: 61 lab 1, 21 lab 2; quick 3)")
     ap.add_argument("--rounds", type=int, help="interleaved rounds (default 3; quick 1)")
-    ap.add_argument("--threads", type=int, default=2, help="LP_NUM_THREADS (default 2)")
+    ap.add_argument("--threads", type=int, default=2, help="LP_NUM_THREADS (default 2; lavapipe's threads, "
+                                                                "recorded on a CPU device)")
     ap.add_argument("--no-heatmaps", action="store_true")
     ap.add_argument("--replot", action="store_true", help="only draw LAB.png again from LAB.csv")
     ap.add_argument("--exe", help="the lab binary (default: BUILD/LAB/LAB)")
@@ -59,10 +60,9 @@ def parse_args(argv=None):
 
 
 def title_note(lab, args):
-    """The plot's second title line: how it was measured."""
+    """The plot's second title line: how it was measured (the device is in the title)."""
     w, h = knobs.size(lab, args.quick)
-    note = (f"{w}x{h}, LP_NUM_THREADS={args.threads}, {args.rounds} interleaved rounds x {args.frames} frames on a "
-            f"shared 2-core machine; bars: round-to-round spread")
+    note = f"{w}x{h}, {args.rounds} interleaved rounds x {args.frames} frames; bars: round-to-round spread"
     if knobs.KNOBS[lab].get("time_args"):
         note += (f"; time: a frame that re-renders every shadow map ({' '.join(knobs.KNOBS[lab]['time_args'])}), "
                  f"error: the static picture")
@@ -75,6 +75,10 @@ def replot(lab, csv_path, png_path, note, quick):
     (several CSVs may have been joined)."""
     known = {c["config"]: c for c in knobs.KNOBS[lab]["configs"](quick)}
     rows = read_rows(csv_path)
+    mixed = [p for p in device.problems(rows) if p.startswith("several devices")]
+    if mixed:  # one front per device: joined CSVs must come from one device
+        print(f"tradeoff: {csv_path}: {mixed[0]} (each device has its own front: plot them apart)", file=sys.stderr)
+        sys.exit(2)
     configs = [from_row(row, known) for row in rows]
     mark_front(configs, knobs.KNOBS[lab]["groups"], knobs.error_key(lab))
     changed = False
@@ -83,7 +87,7 @@ def replot(lab, csv_path, png_path, note, quick):
         row["on_front"], row["dominated_by"] = c["on_front"], c["dominated_by"]
     if changed:  # else the CSV stays byte for byte as measured
         write_rows(csv_path, rows)
-    plot(lab, configs, png_path, note)
+    plot(lab, configs, png_path, note, device.label(configs[0]["device"] if configs else None))
 
 
 def print_defaults(lab, configs):
@@ -113,11 +117,11 @@ def main(argv=None):
         return
     wall = time.time()
     configs, runner = measure(lab, args)
-    write_csv(lab, configs, csv_path, args.rounds)
-    plot(lab, configs, png_path, note)
+    write_csv(lab, configs, csv_path, args.rounds, runner.device)
+    plot(lab, configs, png_path, note, device.label(runner.device))
     if not args.quick and not args.no_heatmaps:
         heatmaps(lab, runner, args.out_dir)
-    print(f"tradeoff: wrote {csv_path} and {lab}.png in {time.time() - wall:.0f} s")
+    print(f"tradeoff: wrote {csv_path} and {lab}.png in {time.time() - wall:.0f} s on {device.label(runner.device)}")
     print_defaults(lab, configs)
     shutil.rmtree(runner.tmp, ignore_errors=True)
     if args.quick and not check(lab, csv_path, configs):

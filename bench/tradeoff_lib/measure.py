@@ -20,7 +20,7 @@ import subprocess
 import sys
 import tempfile
 
-from . import knobs
+from . import device, knobs
 from .results import ERROR_KEYS, SHADOW_KEYS, mark_front
 from .scenes import truth_of
 
@@ -73,6 +73,18 @@ class Runner:
         self.env = dict(os.environ, LP_NUM_THREADS=str(args.threads))
         self.tmp = tempfile.mkdtemp(prefix=f"tradeoff_{lab}_")
         self.truths = {}
+        self.cpu_model = device.read_cpu_model()
+        self.device = None  # what the first run named (device.py); every run must name the same
+
+    def note_device(self, fields):
+        """The device of a run's benchmark fields: the first sets it, a later one that differs
+        ends the sweep (one device, one front)."""
+        d = device.of_benchmark(fields, self.env, self.cpu_model)
+        if self.device is None:
+            self.device = d
+        elif d != self.device:
+            sys.exit(f"tradeoff: the device changed during the sweep: {device.label(self.device)}, "
+                     f"then {device.label(d)}")
 
     def write_scene(self, scene, name):
         path = os.path.join(self.tmp, name + ".json")
@@ -104,7 +116,9 @@ class Runner:
             cmd += ["--out", png]
         if self.args.quick:
             cmd.append("--validate")  # quick runs are tests: validation on, timing not judged
-        return parse_fields(run(cmd + list(extra_args), self.env, cpu), "benchmark")
+        fields = parse_fields(run(cmd + list(extra_args), self.env, cpu), "benchmark")
+        self.note_device(fields)
+        return fields
 
     def frame_cpu_ms(self, scene_path, w, h, frames, png=None):
         """--benchmark `frames` (wall-clock figures) and the CPU time one frame costs (cpu_ms).

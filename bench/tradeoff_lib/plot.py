@@ -43,7 +43,7 @@ def panels(lab, configs):
     return out
 
 
-def plot(lab, configs, path, title_note):
+def plot(lab, configs, path, title_note, device_label):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -58,7 +58,7 @@ def plot(lab, configs, path, title_note):
         legend = draw_panels(lab, todo, axes.flat)
         height = PANEL_HEIGHT_IN * rows + 1.2
         note = textwrap.fill(title_note, 120)
-        fig.suptitle(f"{lab}: time against error", y=0.995)
+        fig.suptitle(f"{lab}: time against error on {device_label}", y=0.995)  # each device has its own front
         fig.text(0.5, 1 - 0.45 / height, note, ha="center", va="top", fontsize=SMALL, color="0.25")
         bottom = 0.0
         if legend:  # many series: one legend for the figure, under the panels, not over the points

@@ -7,6 +7,7 @@ measure.py: `errors` (lab_compare's figures as numbers), the per-round lists `ti
 """
 import csv
 
+from . import device as devices
 from .knobs import config
 
 ERROR_KEYS = ["mean_abs", "p99_abs", "max_abs", "over_2", "mean_de2000", "p99_de2000"]
@@ -14,7 +15,7 @@ ERROR_KEYS = ["mean_abs", "p99_abs", "max_abs", "over_2", "mean_de2000", "p99_de
 SHADOW_KEYS = ["wrong_side_pct", "shadow_mae"]
 CSV_FIELDS = (["lab", "group", "config", "knob", "default", "seed", "cpu_ms", "cpu_spread_ms", "median_ms", "p95_ms",
                "spread_ms", "best_ms", "rounds", "round_ms"]
-              + ERROR_KEYS + SHADOW_KEYS + ["on_front", "dominated_by"])
+              + ERROR_KEYS + SHADOW_KEYS + ["on_front", "dominated_by"] + devices.DEVICE_KEYS)
 TIME_KEYS = ["median_ms", "p95_ms", "spread_ms", "best_ms", "cpu_ms", "cpu_spread_ms"]
 
 
@@ -36,9 +37,9 @@ def mark_front(configs, groups, key="mean_abs"):
         c["dominated_by"] = ";".join(o["config"] for o in robust)
 
 
-def csv_row(lab, c, rounds):
+def csv_row(lab, c, rounds, device=None):
     """The CSV row of a measured configuration (times to 3 decimals, errors to 4, a missing
-    error figure empty)."""
+    error figure empty) on `device` (device.py's dictionary; None: the device columns empty)."""
     row = {"lab": lab, "group": c["group"], "config": c["config"], "knob": c["knob"],
            "default": "yes" if c["default"] else "", "seed": c["seed"],
            "median_ms": f"{c['median_ms']:.3f}", "p95_ms": f"{c['p95_ms']:.3f}",
@@ -47,6 +48,7 @@ def csv_row(lab, c, rounds):
            "round_ms": ";".join(f"{t:.2f}" for t in c["times"]),
            "on_front": c["on_front"], "dominated_by": c["dominated_by"]}
     row.update({k: f"{c['errors'][k]:.4f}" if k in c["errors"] else "" for k in ERROR_KEYS + SHADOW_KEYS})
+    row.update(devices.of_row(device or {}))
     return row
 
 
@@ -62,8 +64,8 @@ def write_rows(path, rows):
         wr.writerows(rows)
 
 
-def write_csv(lab, configs, path, rounds):
-    write_rows(path, [csv_row(lab, c, rounds) for c in configs])
+def write_csv(lab, configs, path, rounds, device):
+    write_rows(path, [csv_row(lab, c, rounds, device) for c in configs])
 
 
 def from_row(row, known):
@@ -76,4 +78,5 @@ def from_row(row, known):
     c["errors"] = {k: float(row[k]) for k in ERROR_KEYS + SHADOW_KEYS if row.get(k)}
     c["on_front"], c["dominated_by"] = row["on_front"], row["dominated_by"]
     c["rounds"] = row["rounds"]
+    c["device"] = devices.of_row(row)  # all "" in a CSV from before the device was recorded
     return c
