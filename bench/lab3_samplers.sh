@@ -7,6 +7,8 @@
 # other jobs the wall clock swings by 2x between runs; the CPU time hardly moves.
 # The error of each setting against the supersampled ground truth comes from the test
 # Lab3Filtering.AnisotropyLowersTheErrorAgainstTheGroundTruth (build/test_output/lab3/sampler_errors.md).
+# The first line names the device (each device has its own best setting: a CPU rasterizer is not a
+# GPU), from lab 3's --benchmark line; on a CPU device also the CPU model and LP_NUM_THREADS.
 #   bash bench/lab3_samplers.sh [frames] [rounds]
 set -euo pipefail
 # -h / --help: the comment at the top of this file, nothing run.
@@ -20,6 +22,19 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 median() { "$@" | sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p'; }
+# "NAME (TYPE[; CPU model, LP_NUM_THREADS=N])" of the device EXE runs on (the name's `_` back to spaces).
+device_of() {
+  local line name type
+  line=$("$1" --benchmark 1 --width 64 --height 36 | grep '^benchmark ')
+  name=$(sed -n 's/.* device=\([^ ]*\).*/\1/p' <<<"$line" | tr _ ' ')
+  type=$(sed -n 's/.* device_type=\([^ ]*\).*/\1/p' <<<"$line")
+  [ -n "$name" ] || { echo "lab3_samplers.sh: $1 names no device on its benchmark line (rebuild it)" >&2; exit 2; }
+  if [ "$type" = cpu ]; then
+    echo "$name ($type; $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1), LP_NUM_THREADS=$LP_NUM_THREADS)"
+  else
+    echo "$name ($type)"
+  fi
+}
 cpu_s() { /usr/bin/time -f "%U %S" "$@" 2>&1 >/dev/null | tail -1 | awk '{print $1 + $2}'; }
 # "WALL_MS/CPU_MS" for: EXE SCENE
 measure() {
@@ -49,6 +64,8 @@ for i in "${!settings[@]}"; do
   sed -e "s|\"textures/|\"$root/scenes/textures/|" \
       -e "s|\"sampler\": {[^}]*}|\"sampler\": { $sampler }|" "$root/scenes/lab3_floor.json" >"$tmp/floor_$i.json"
 done
+device=$(device_of "$build/lab3_textures/lab3_textures")  # an assignment: set -e ends the script if it fails
+echo "device: $device"
 echo "wall median ms / CPU ms per frame at 1280x720, LP_NUM_THREADS=$LP_NUM_THREADS, $frames frames, $rounds rounds"
 for ((r = 1; r <= rounds; r++)); do
   line="round $r:"

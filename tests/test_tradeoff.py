@@ -180,6 +180,15 @@ class Parsing(unittest.TestCase):
         d = device.of_benchmark(fields, {"LP_NUM_THREADS": "2"}, "AMD EPYC 7B13")
         self.assertEqual(d, {"device": "NVIDIA H200", "device_type": "discrete", "lp_num_threads": "", "cpu_model": ""})
         self.assertEqual(device.label(d), "NVIDIA H200 (discrete)")
+        self.assertEqual(device.title_parts(d), ("NVIDIA H200 (discrete)", ""))
+
+    def test_title_parts(self):
+        lavapipe = {"device": "llvmpipe (LLVM 15.0.6, 256 bits)", "device_type": "cpu", "lp_num_threads": "2",
+                    "cpu_model": "AMD EPYC 7B13"}
+        self.assertEqual(device.title_parts(lavapipe), ("llvmpipe (LLVM 15.0.6, 256 bits) (cpu)",
+                                                        "AMD EPYC 7B13, LP_NUM_THREADS=2"))
+        self.assertEqual(device.title_parts({"device": ""}), ("device not recorded", ""))
+        self.assertEqual(device.title_parts(None), ("device not recorded", ""))
 
     def test_a_line_without_device_exits(self):
         with self.assertRaises(SystemExit):

@@ -87,7 +87,7 @@ def replot(lab, csv_path, png_path, note, quick):
         row["on_front"], row["dominated_by"] = c["on_front"], c["dominated_by"]
     if changed:  # else the CSV stays byte for byte as measured
         write_rows(csv_path, rows)
-    plot(lab, configs, png_path, note, device.label(configs[0]["device"] if configs else None))
+    plot(lab, configs, png_path, note, configs[0]["device"] if configs else None)
 
 
 def print_defaults(lab, configs):
@@ -118,7 +118,7 @@ def main(argv=None):
     wall = time.time()
     configs, runner = measure(lab, args)
     write_csv(lab, configs, csv_path, args.rounds, runner.device)
-    plot(lab, configs, png_path, note, device.label(runner.device))
+    plot(lab, configs, png_path, note, runner.device)
     if not args.quick and not args.no_heatmaps:
         heatmaps(lab, runner, args.out_dir)
     print(f"tradeoff: wrote {csv_path} and {lab}.png in {time.time() - wall:.0f} s on {device.label(runner.device)}")

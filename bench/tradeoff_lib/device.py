@@ -57,6 +57,15 @@ def label(d):
     return text + ")"
 
 
+def title_parts(d):
+    """A plot's (title, note) halves of the label: "NAME (TYPE)" for the title, and on a CPU
+    device "CPU model, LP_NUM_THREADS=N" for the note under it ("" otherwise)."""
+    if not d or not d.get("device"):
+        return "device not recorded", ""
+    machine = f"{d['cpu_model']}, LP_NUM_THREADS={d['lp_num_threads']}" if d.get("cpu_model") or d.get("lp_num_threads") else ""
+    return f"{d['device']} ({d['device_type'] or 'type not recorded'})", machine
+
+
 def problems(rows):
     """What is wrong with the CSV rows' device: each row names a device and a known type, a CPU
     device its threads and model, and every row the same device (one device, one front)."""

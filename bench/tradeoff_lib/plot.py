@@ -14,6 +14,7 @@ import math
 import statistics
 import textwrap
 
+from .device import title_parts
 from .knobs import KNOBS, error_key, error_label
 
 CPU_LABEL = "CPU time per frame (ms, all threads, log)"
@@ -43,7 +44,8 @@ def panels(lab, configs):
     return out
 
 
-def plot(lab, configs, path, title_note, device_label):
+def plot(lab, configs, path, title_note, device):
+    """LAB.png; the title names the device (device.py's dictionary: each device has its own front)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -57,8 +59,9 @@ def plot(lab, configs, path, title_note, device_label):
             ax.set_visible(False)
         legend = draw_panels(lab, todo, axes.flat)
         height = PANEL_HEIGHT_IN * rows + 1.2
-        note = textwrap.fill(title_note, 120)
-        fig.suptitle(f"{lab}: time against error on {device_label}", y=0.995)  # each device has its own front
+        on, machine = title_parts(device)
+        note = textwrap.fill(f"{machine}; {title_note}" if machine else title_note, 120)
+        fig.suptitle(f"{lab}: time against error on {on}", y=0.995)
         fig.text(0.5, 1 - 0.45 / height, note, ha="center", va="top", fontsize=SMALL, color="0.25")
         bottom = 0.0
         if legend:  # many series: one legend for the figure, under the panels, not over the points
