@@ -249,6 +249,39 @@ void expect_colour(dvec3 actual, dvec3 expected) {
     EXPECT_NEAR(actual.z, expected.z, 1e-7);
 }
 
+TEST(CpuShadowPicture, AMarginExtendsTheSamePixelGrid) {
+    // The picture rendered with a margin is the plain one in its centre, bit for bit: the same rays
+    // through the same pixel centres (the margin only adds rays past the frame). A spot light, an
+    // opaque and a translucent caster, a non-square frame.
+    lab::Scene s = floor_scene();
+    s.camera.position = {3, 4, 5};
+    s.camera.target = {0, 0.5f, 0};
+    s.objects.push_back(object("cube", "opaque", {0.5f, 0.6f, 0}, {20, 30, 0}, {0.8f, 0.5f, 0.7f}));
+    s.objects.push_back(object("cube", "glass50", {-1, 1.2f, 0.5f}));
+    s.lights.push_back(positional(lab::LightDesc::Type::Spot, {1, 4, 1}));
+    for (const bool shadows : {true, false}) {
+        const ref::RefImage plain = ref::render_shadowed(s, 23, 17, shadows);
+        const ref::RefImage big = ref::render_shadowed(s, 23, 17, shadows, 2);
+        ASSERT_EQ(big.width, 27);
+        ASSERT_EQ(big.height, 21);
+        const ref::RefImage crop = ref::crop_margin(big, 2);
+        ASSERT_EQ(crop.width, 23);
+        ASSERT_EQ(crop.height, 17);
+        ASSERT_EQ(crop.linear.size(), plain.linear.size());
+        size_t differing = 0;
+        for (size_t i = 0; i < plain.linear.size(); ++i)
+            differing += crop.linear[i] != plain.linear[i] || crop.object_id[i] != plain.object_id[i] ||
+                         crop.triangle_id[i] != plain.triangle_id[i] || crop.hits[i].position != plain.hits[i].position ||
+                         crop.translucent_objects[i] != plain.translucent_objects[i];
+        EXPECT_EQ(differing, 0u) << (shadows ? "shadowed" : "unshadowed");
+        // The margin holds new rays: its bottom row sees the floor beyond the frame's bottom row.
+        const ref::Hit& below = big.hits[size_t(big.index(2, 20))];
+        const ref::Hit& last = plain.hits[size_t(plain.index(0, 16))];
+        ASSERT_TRUE(below.hit && last.hit);
+        EXPECT_NE(below.position, last.position);
+    }
+}
+
 TEST(CpuShadowPicture, TranslucentLayersBlendBackToFront) {
     lab::Scene s = blend_scene();
     const dvec3 bg(0.2, 0.4, 0.6), red(1, 0, 0), blue(0, 0, 1), wall(0, 1, 0);
@@ -402,6 +435,53 @@ TEST(ShadowMetric, SizesMustAgree) {
     EXPECT_THROW(ref::shadow_metric(a, b, b, b), std::invalid_argument);
     EXPECT_THROW(ref::shadow_metric(b, b, a, b), std::invalid_argument);
     EXPECT_THROW(ref::shadow_metric(b, b, b, a), std::invalid_argument);
+    // With a margin the references are 2·margin larger each way, and only then.
+    ref::ShadowMetricOptions o;
+    o.margin = 1;
+    const lab::Image8 big = grey(6, 7, 9);
+    EXPECT_NO_THROW(ref::shadow_metric(b, big, big, big, o));
+    EXPECT_THROW(ref::shadow_metric(b, b, b, b, o), std::invalid_argument);
+    EXPECT_THROW(ref::shadow_metric(a, big, big, big, o), std::invalid_argument);
+    EXPECT_THROW(ref::shadow_metric(b, big, b, big, o), std::invalid_argument);
+}
+
+TEST(ShadowMetric, AnEdgeJustOutsideTheFrameBandsTheBorderRows) {
+    // The judged picture is 20 × 10; the references are 24 × 14 (margin 2). S is lit down to the
+    // frame's last row and in shadow from the first row below it (big-frame row 12). X is in shadow
+    // on its last two rows (crop rows 8, 9): 1 and 2 px from S's edge, ties under k = 2.
+    const lab::Image8 U = grey(24, 14, 200), Z = grey(24, 14, 40);
+    lab::Image8 S = grey(24, 14, 200);
+    for (int y = 12; y < 14; ++y)
+        for (int x = 0; x < 24; ++x) set(S, x, y, 40);
+    lab::Image8 X = grey(20, 10, 200);
+    for (int y = 8; y < 10; ++y)
+        for (int x = 0; x < 20; ++x) set(X, x, y, 40);
+    ref::ShadowMetricOptions o;
+    o.band = 2;
+    o.margin = 2;
+    ref::ShadowMetric m = ref::shadow_metric(X, S, U, Z, o);
+    EXPECT_EQ(m.width, 20);
+    EXPECT_EQ(m.state.size(), 200u);
+    EXPECT_EQ(m.receivers, 200u);
+    EXPECT_EQ(m.banded, 40u);  // rows 8, 9: within 2 of big-frame row 12
+    EXPECT_EQ(m.wrong_side, 0u);
+    EXPECT_EQ(m.state[size_t(9 * 20)], 1);  // S's state of the crop, not of the margin
+    // Judged on the crop alone, the same picture's border rows count (the defect the margin fixes).
+    lab::Image8 s = grey(20, 10, 200), u = grey(20, 10, 200), z = grey(20, 10, 40);
+    o.margin = 0;
+    m = ref::shadow_metric(X, s, u, z, o);
+    EXPECT_EQ(m.banded, 0u);
+    EXPECT_EQ(m.wrong_side, 40u);
+    // One row more (crop row 7, 3 px from the edge) is outside the band, margin or not.
+    for (int x = 0; x < 20; ++x) set(X, x, 7, 40);
+    o.margin = 2;
+    m = ref::shadow_metric(X, S, U, Z, o);
+    EXPECT_EQ(m.banded, 40u);
+    EXPECT_EQ(m.wrong_side, 20u);
+    EXPECT_EQ(m.wrong[size_t(7 * 20)], 1);
+    // Colours and MAE come from the crop: X equal to S's centre gives 0.
+    lab::Image8 centre = grey(20, 10, 200);
+    EXPECT_DOUBLE_EQ(ref::shadow_metric(centre, S, U, Z, o).mae, 0.0);
 }
 
 }  // namespace

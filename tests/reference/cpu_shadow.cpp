@@ -9,6 +9,8 @@
 #include <exception>
 #include <limits>
 #include <map>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 namespace ref {
@@ -100,8 +102,9 @@ lab::Scene with_lights(const lab::Scene& scene, void (*edit)(lab::LightDesc&)) {
 
 }  // namespace
 
-RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool shadows) {
+RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool shadows, int margin) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("render_shadowed: empty image");
+    if (margin < 0) throw std::invalid_argument("render_shadowed: negative margin");
     const SceneGeometry geometry(scene);
     std::shared_ptr<const ShadowCasters> casters = shadows ? std::make_shared<ShadowCasters>(scene) : nullptr;
     const ShadeFn shade = make_texture_shader(scene, width, height, false, {}, casters);
@@ -112,10 +115,13 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
         opacity.push_back(it == scene.materials.end() ? 1.0 : std::clamp(double(it->second.opacity), 0.0, 1.0));
     }
 
+    // The picture is `margin` pixels larger on every side: the same camera and the same pixel grid
+    // (rays through the width × height grid's centres, extended past its edges), so its centre crop
+    // is the plain picture bit for bit.
     RefImage image;
-    image.width = width;
-    image.height = height;
-    const size_t n = size_t(width) * size_t(height);
+    image.width = width + 2 * margin;
+    image.height = height + 2 * margin;
+    const size_t n = size_t(image.width) * size_t(image.height);
     image.linear.assign(n, glm::dvec3(0.0));
     image.object_id.assign(n, -1);
     image.triangle_id.assign(n, -1);
@@ -123,8 +129,8 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
     image.translucent_objects.assign(n, 0);
 
     const auto pixel = [&](int x, int y) {
-        const size_t i = size_t(y) * size_t(width) + size_t(x);
-        const Ray ray = primary_ray(camera, width, height, x + 0.5, y + 0.5);
+        const size_t i = size_t(y) * size_t(image.width) + size_t(x);
+        const Ray ray = primary_ray(camera, width, height, (x - margin) + 0.5, (y - margin) + 0.5);
         // Everything the ray crosses between the clip planes, near to far.
         std::vector<CrossedTriangle> crossed;
         geometry.for_each_hit(ray, camera.near_plane, camera.far_plane, [&](const CrossedTriangle& c) {
@@ -200,8 +206,8 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
     for (int t = 0; t < threads; ++t)
         pool.emplace_back([&, t] {
             try {
-                for (int y = t; y < height; y += threads)
-                    for (int x = 0; x < width; ++x) pixel(x, y);
+                for (int y = t; y < image.height; y += threads)
+                    for (int x = 0; x < image.width; ++x) pixel(x, y);
             } catch (...) {
                 errors[size_t(t)] = std::current_exception();
             }
@@ -212,12 +218,34 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
     return image;
 }
 
-ShadowReference render_shadow_reference(const lab::Scene& scene, int width, int height) {
+ShadowReference render_shadow_reference(const lab::Scene& scene, int width, int height, int margin) {
     ShadowReference r;
-    r.shadowed = render_shadowed(scene, width, height, true);
-    r.unshadowed = render_shadowed(scene, width, height, false);
-    r.unlit = render_shadowed(with_lights(scene, [](lab::LightDesc& l) { l.intensity = 0.0f; }), width, height, false);
+    r.shadowed = render_shadowed(scene, width, height, true, margin);
+    r.unshadowed = render_shadowed(scene, width, height, false, margin);
+    r.unlit = render_shadowed(with_lights(scene, [](lab::LightDesc& l) { l.intensity = 0.0f; }), width, height, false, margin);
     return r;
+}
+
+RefImage crop_margin(const RefImage& image, int margin) {
+    if (margin < 0 || 2 * margin >= image.width || 2 * margin >= image.height)
+        throw std::invalid_argument("crop_margin: margin " + std::to_string(margin) + " does not fit a " +
+                                    std::to_string(image.width) + "x" + std::to_string(image.height) + " picture");
+    RefImage out;
+    out.width = image.width - 2 * margin;
+    out.height = image.height - 2 * margin;
+    const auto crop = [&](const auto& in, auto& result) {
+        if (in.empty()) return;
+        for (int y = 0; y < out.height; ++y) {
+            const auto row = in.begin() + std::ptrdiff_t(image.index(margin, y + margin));
+            result.insert(result.end(), row, row + out.width);
+        }
+    };
+    crop(image.linear, out.linear);
+    crop(image.object_id, out.object_id);
+    crop(image.triangle_id, out.triangle_id);
+    crop(image.hits, out.hits);
+    crop(image.translucent_objects, out.translucent_objects);
+    return out;
 }
 
 }  // namespace ref

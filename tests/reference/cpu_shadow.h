@@ -53,7 +53,14 @@ void toward_light(const lab::LightDesc& light, const glm::dvec3& P, glm::dvec3* 
 // Lab 4's reference picture: lab 3's textured shading (ref::make_texture_shader) where every light
 // with cast_shadows is multiplied by ShadowCasters::transmittance, plus translucent blending.
 // `shadows` false: the same picture with every shadow off (lights unoccluded), for the error metric.
-RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool shadows = true);
+// `margin` > 0: the picture is (width + 2·margin) × (height + 2·margin), the same camera and pixel
+// grid extended past the frame (rays through pixel centres x + 0.5 for x = −margin … width − 1 + margin),
+// so that crop_margin(picture, margin) is the plain picture bit for bit. The shadow metric's band
+// then sees reference edges just outside the frame (ShadowMetricOptions::margin).
+RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool shadows = true, int margin = 0);
+
+// The width × height centre of a picture rendered with `margin` (every per-pixel field cropped).
+RefImage crop_margin(const RefImage& image, int margin);
 
 // The three pictures the shadow error metric needs (image_compare.h, shadow_error()):
 //   shadowed   = render_shadowed(scene);
@@ -62,6 +69,6 @@ RefImage render_shadowed(const lab::Scene& scene, int width, int height, bool sh
 struct ShadowReference {
     RefImage shadowed, unshadowed, unlit;
 };
-ShadowReference render_shadow_reference(const lab::Scene& scene, int width, int height);
+ShadowReference render_shadow_reference(const lab::Scene& scene, int width, int height, int margin = 0);
 
 }  // namespace ref

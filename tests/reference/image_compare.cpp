@@ -404,47 +404,63 @@ std::string ShadowMetric::line() const {
 
 ShadowMetric shadow_metric(const lab::Image8& actual, const lab::Image8& shadowed, const lab::Image8& unshadowed,
                            const lab::Image8& unlit, const ShadowMetricOptions& options) {
-    require_same_size(shadowed, actual, "the picture");
+    if (options.band < 0) throw std::invalid_argument("shadow_metric: negative band");
+    if (options.margin < 0) throw std::invalid_argument("shadow_metric: negative margin");
+    const int mg = options.margin;
+    // S is X plus the margin on every side.
+    if (shadowed.width != actual.width + 2 * mg || shadowed.height != actual.height + 2 * mg ||
+        actual.rgba.size() != size_t(actual.width) * size_t(actual.height) * 4 ||
+        shadowed.rgba.size() != size_t(shadowed.width) * size_t(shadowed.height) * 4)
+        throw std::invalid_argument("shadow_metric: the picture is " + std::to_string(actual.width) + "x" +
+                                    std::to_string(actual.height) + ", the reference " + std::to_string(shadowed.width) +
+                                    "x" + std::to_string(shadowed.height) + " (margin " + std::to_string(mg) + ")");
     require_same_size(shadowed, unshadowed, "the unshadowed reference");
     require_same_size(shadowed, unlit, "the unlit reference");
-    if (options.band < 0) throw std::invalid_argument("shadow_metric: negative band");
-    const int w = shadowed.width, h = shadowed.height;
-    const size_t total = size_t(w) * size_t(h);
+    const int W = shadowed.width, H = shadowed.height;  // the reference frame, margin included
+    const int w = actual.width, h = actual.height;      // the judged picture: its centre
+    const size_t big = size_t(W) * size_t(H), total = size_t(w) * size_t(h);
+    const auto at = [&](size_t i) { return size_t(int(i / size_t(w)) + mg) * size_t(W) + size_t(int(i % size_t(w)) + mg); };
     ShadowMetric m;
     m.width = w;
     m.height = h;
     m.band_k = options.band;
-    m.state.assign(total, 0);
-    std::vector<uint8_t> actual_state(total, 0);
-    for (size_t i = 0; i < total; ++i) {
+    std::vector<uint8_t> state(big, 0);  // S's state over the whole reference frame
+    for (size_t i = 0; i < big; ++i) {
         const uint8_t* u = &unshadowed.rgba[4 * i];
         const uint8_t* z = &unlit.rgba[4 * i];
         if (pixel_diff(u, z) < options.min_contrast) continue;
-        m.state[i] = lit_fraction(&shadowed.rgba[4 * i], u, z) >= 0.5 ? 1 : 2;
-        actual_state[i] = lit_fraction(&actual.rgba[4 * i], u, z) >= 0.5 ? 1 : 2;
+        state[i] = lit_fraction(&shadowed.rgba[4 * i], u, z) >= 0.5 ? 1 : 2;
     }
-    // The band: p is in it when some pixel within Chebyshev distance k has another S-state.
-    m.band.assign(total, 0);
+    // The band: p is in it when some pixel within Chebyshev distance k has another S-state
+    // (found on the whole reference frame, so edges in the margin count).
+    std::vector<uint8_t> band(big, 0);
     for (uint8_t value = 0; value < 3; ++value) {
-        std::vector<uint8_t> has(total, 0);
-        for (size_t i = 0; i < total; ++i) has[i] = m.state[i] == value;
-        const std::vector<uint8_t> near = dilate(has, w, h, options.band);
-        for (size_t i = 0; i < total; ++i)
-            if (near[i] && m.state[i] != value) m.band[i] = 1;
+        std::vector<uint8_t> has(big, 0);
+        for (size_t i = 0; i < big; ++i) has[i] = state[i] == value;
+        const std::vector<uint8_t> near = dilate(has, W, H, options.band);
+        for (size_t i = 0; i < big; ++i)
+            if (near[i] && state[i] != value) band[i] = 1;
     }
+    m.state.assign(total, 0);
+    m.band.assign(total, 0);
     m.wrong.assign(total, 0);
     double sum = 0.0;
     for (size_t i = 0; i < total; ++i) {
+        const size_t r = at(i);  // the same pixel in the reference frame
+        m.state[i] = state[r];
+        m.band[i] = band[r];
         if (m.state[i] == 0) continue;
         ++m.receivers;
         const uint8_t* x = &actual.rgba[4 * i];
-        const uint8_t* s = &shadowed.rgba[4 * i];
+        const uint8_t* s = &shadowed.rgba[4 * r];
         sum += (std::abs(int(x[0]) - int(s[0])) + std::abs(int(x[1]) - int(s[1])) + std::abs(int(x[2]) - int(s[2]))) / 3.0;
         if (m.band[i]) {
             ++m.banded;
             continue;
         }
-        if (actual_state[i] != m.state[i]) {
+        const uint8_t* u = &unshadowed.rgba[4 * r];
+        const uint8_t* z = &unlit.rgba[4 * r];
+        if ((lit_fraction(x, u, z) >= 0.5 ? 1 : 2) != m.state[i]) {
             m.wrong[i] = 1;
             ++m.wrong_side;
         }

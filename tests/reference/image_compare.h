@@ -145,6 +145,10 @@ lab::Image8 error_heatmap(const lab::Image8& a, const lab::Image8& b, const std:
 struct ShadowMetricOptions {
     int band = 4;          // k, in pixels (the PCF radius in texels + 1; see docs/testing.md)
     int min_contrast = 3;  // 1/255: smaller light contributions are too faint to classify
+    // S, U and Z are `margin` pixels larger than X on every side (ref::render_shadow_reference with
+    // that margin): the band is found on the larger frame and cropped, so an S edge just outside the
+    // picture bands the pixels within k of it as one inside does. Use margin ≥ band; 0: same size.
+    int margin = 0;
 };
 
 struct ShadowMetric {
@@ -166,8 +170,9 @@ struct ShadowMetric {
 // The lit fraction f of colour x between z (light off) and u (light on), 8-bit RGB.
 double lit_fraction(const uint8_t x[3], const uint8_t u[3], const uint8_t z[3]);
 
-// The metric of `actual` against the shadowed reference S (all four images the same size;
-// throws std::invalid_argument otherwise).
+// The metric of `actual` against the shadowed reference S (S, U, Z the size of `actual` plus
+// 2·options.margin each way; throws std::invalid_argument otherwise). The returned per-pixel
+// vectors are the size of `actual`.
 ShadowMetric shadow_metric(const lab::Image8& actual, const lab::Image8& shadowed, const lab::Image8& unshadowed,
                            const lab::Image8& unlit, const ShadowMetricOptions& options = {});
 
