@@ -93,6 +93,10 @@ const pageOf = new Map([['README.md', 'readme.html'], ['docs/diffs/README.md', '
   ['docs/tradeoffs.md', 'tradeoffs.html']]);
 for (const lab of labs) if (exists(`${lab}/README.md`)) pageOf.set(`${lab}/README.md`, `${lab}.html`);
 const docs = fs.readdirSync(path.join(root, 'docs')).filter((f) => f.endsWith('.md')).sort().map((f) => `docs/${f}`);
+// The instructors' answers (docs/solutions/, which copies and so the student editions leave out).
+if (exists('docs/solutions')) {
+  docs.push(...fs.readdirSync(path.join(root, 'docs/solutions')).filter((f) => f.endsWith('.md')).sort().map((f) => `docs/solutions/${f}`));
+}
 for (const doc of docs) if (!pageOf.has(doc)) pageOf.set(doc, posix.basename(doc).replace(/\.md$/, '.html'));
 for (const lab of labs) {
   if (exists(`docs/images/${lab}/README.md`)) pageOf.set(`docs/images/${lab}/README.md`, `gallery-${lab}.html`);
