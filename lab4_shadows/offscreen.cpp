@@ -5,6 +5,9 @@
 #include "render_target.h"
 #include "vk_check.h"
 
+#include <algorithm>
+#include <cmath>
+
 bool format_supports(const lab::VulkanContext& vk, VkFormat format, VkFormatFeatureFlags features) {
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(vk.physical_device(), format, &p);
@@ -156,4 +159,32 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
     const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &area);  // nothing drawn outside the render area
+}
+
+VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size) {
+    const VkRect2D whole{{0, 0}, {size, size}};
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const lab::Box& box : boxes) {
+        int behind = 0;  // corners at or behind the light's plane (w ≤ 0)
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec4 p = world_to_clip * glm::dvec4(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
+                                                            corner & 4 ? box.hi.z : box.lo.z, 1.0);
+            if (p.w <= 1e-9) {
+                ++behind;
+                continue;
+            }
+            // The viewport maps x, y in [−1, 1] onto [0, size] (the box's projection holds its
+            // contents': projection keeps straight lines straight in front of the plane).
+            x0 = std::min(x0, (p.x / p.w + 1.0) * 0.5 * size), x1 = std::max(x1, (p.x / p.w + 1.0) * 0.5 * size);
+            y0 = std::min(y0, (p.y / p.w + 1.0) * 0.5 * size), y1 = std::max(y1, (p.y / p.w + 1.0) * 0.5 * size);
+        }
+        if (behind == 8) continue;  // wholly behind: clipped away (w > 0 holds with depth clamp too)
+        if (behind > 0) return whole;  // across the plane: its projection has no bound
+    }
+    // One texel to spare on each side (the pass rasterizes in float from a float matrix).
+    const double s = size;
+    const double left = std::clamp(std::floor(x0) - 1.0, 0.0, s), right = std::clamp(std::ceil(x1) + 1.0, 0.0, s);
+    const double top = std::clamp(std::floor(y0) - 1.0, 0.0, s), bottom = std::clamp(std::ceil(y1) + 1.0, 0.0, s);
+    if (!(right > left && bottom > top)) return VkRect2D{};  // nothing in front, or all off the map
+    return {{int32_t(left), int32_t(top)}, {uint32_t(right - left), uint32_t(bottom - top)}};
 }

@@ -5,9 +5,12 @@
 // format check that picks the depth format. shadow_maps.cpp uses them.
 #pragma once
 
+#include "bounds.h"
 #include "buffer.h"
 #include "vk_context.h"
 #include "vk_handle.h"
+
+#include <glm/glm.hpp>
 
 #include <vector>
 
@@ -67,3 +70,9 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
 // with the stored one (which compare op, which border colour outside the map: exercise
 // comparison_sampler in offscreen.cpp).
 lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool linear, bool compare);
+
+// The texels of a `size`² target that anything inside `boxes` (world space) can cover through
+// `world_to_clip`, with a texel to spare: the whole target when a box reaches behind the
+// projection's plane (w ≤ 0 at some corners), none when no box is in front of it or all lie off
+// the target. What a pass must draw or clear, or whether a caster can reach a cube face at all.
+VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size);

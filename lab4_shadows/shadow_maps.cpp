@@ -248,7 +248,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         for (size_t i = 0; i < objects_.size(); ++i)
             if (in_map[i]) most_bias[i] = float(f.depth_of_texels(objects_[i].box, most_texels / map.depth.size));
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
-    // and their boxes, whose footprint on each face is all its transmittance pass draws.
+    // and their boxes, whose covered_texels() on each face are all its transmittance pass draws.
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
     std::vector<Box> translucent;
@@ -259,18 +259,25 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     const std::string pass = std::string("map: ") + kLightKinds[int(light.type)] + " " + std::to_string(map.light);
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);
+        // Only the casters whose box reaches this face: a cube face sees a quarter of the scene or
+        // less, and lavapipe pays for every triangle sent, on screen or not (2D maps are fitted to
+        // their casters: all reach them).
+        std::vector<bool> in_face = in_map;
+        for (size_t i = 0; i < objects_.size(); ++i)
+            if (in_face[i] && covered_texels(world_to_clip, {objects_[i].box}, map.depth.size).extent.width == 0)
+                in_face[i] = false;
         {
             const lab::TimedPass timed(timer, cmd, pass);
             map.depth.begin(cmd, face);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
-            draw_casters(cmd, world_to_clip, lighting, false, in_map, &light.shadow, most_bias);
+            draw_casters(cmd, world_to_clip, lighting, false, in_face, &light.shadow, most_bias);
             vkCmdEndRenderPass(cmd);
         }
         if (translucent_->active()) {
             const lab::TimedPass timed(timer, cmd, "translucent " + pass);
             translucent_->render(cmd, map.translucent, face, map.cube,
-                                 TranslucentShadows::footprint(world_to_clip, translucent, map.depth.size),
-                                 [&] { draw_casters(cmd, world_to_clip, lighting, true, in_map, nullptr, {}); });
+                                 covered_texels(world_to_clip, translucent, map.depth.size),
+                                 [&] { draw_casters(cmd, world_to_clip, lighting, true, in_face, nullptr, {}); });
         }
     }
 }

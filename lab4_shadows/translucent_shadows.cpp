@@ -6,7 +6,6 @@
 #include "shader.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace {
 // How far behind the nearest translucent caster a receiver must be to be behind it, in texels.
@@ -86,34 +85,6 @@ TranslucentShadows::Map TranslucentShadows::make_map(uint32_t resolution, bool c
     });
     m.drawn.assign(m.transmittance.layers(), VkRect2D{});
     return m;
-}
-
-VkRect2D TranslucentShadows::footprint(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size) {
-    const VkRect2D whole{{0, 0}, {size, size}};
-    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-    for (const lab::Box& box : boxes) {
-        int behind = 0;  // corners at or behind the light's plane (w ≤ 0)
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::dvec4 p = world_to_clip * glm::dvec4(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
-                                                            corner & 4 ? box.hi.z : box.lo.z, 1.0);
-            if (p.w <= 1e-9) {
-                ++behind;
-                continue;
-            }
-            // The viewport maps x, y in [−1, 1] onto [0, size] (the box's projection holds its
-            // contents': projection keeps straight lines straight in front of the plane).
-            x0 = std::min(x0, (p.x / p.w + 1.0) * 0.5 * size), x1 = std::max(x1, (p.x / p.w + 1.0) * 0.5 * size);
-            y0 = std::min(y0, (p.y / p.w + 1.0) * 0.5 * size), y1 = std::max(y1, (p.y / p.w + 1.0) * 0.5 * size);
-        }
-        if (behind == 8) continue;  // wholly behind: clipped away (w > 0 holds with depth clamp too)
-        if (behind > 0) return whole;  // across the plane: its projection has no bound
-    }
-    // One texel to spare on each side (the pass rasterizes in float from a float matrix).
-    const double s = size;
-    const double left = std::clamp(std::floor(x0) - 1.0, 0.0, s), right = std::clamp(std::ceil(x1) + 1.0, 0.0, s);
-    const double top = std::clamp(std::floor(y0) - 1.0, 0.0, s), bottom = std::clamp(std::ceil(y1) + 1.0, 0.0, s);
-    if (!(right > left && bottom > top)) return VkRect2D{};  // nothing in front, or all off the map
-    return {{int32_t(left), int32_t(top)}, {uint32_t(right - left), uint32_t(bottom - top)}};
 }
 
 void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,

@@ -10,12 +10,9 @@
 // glass ball a tenth of the map across costs about a hundredth of a full-map pass.
 #pragma once
 
-#include "bounds.h"
 #include "offscreen.h"
 #include "pipeline_builder.h"
 #include "vk_context.h"
-
-#include <glm/glm.hpp>
 
 #include <array>
 #include <functional>
@@ -39,15 +36,10 @@ public:
     // A transmittance map of `resolution`² (a cube: six faces) beside a depth map, cleared.
     Map make_map(uint32_t resolution, bool cube) const;
 
-    // The texels of a `size`² map that the casters in `boxes` (world space) can cover through
-    // `world_to_clip`, with a texel to spare; the whole map when a box reaches behind the
-    // light's plane (perspective), none when no box is in front of it.
-    static VkRect2D footprint(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size);
-
-    // Face `face` of `map`: begins its pass over `area` (the footprint of its translucent casters)
-    // and what the last render drew — r cleared to 1, g to depth 1 there, the rest kept — and, for
-    // each of the two pipelines — nearest depth into g, then r ×= 1 − α — binds it and calls
-    // `draw_translucent()`. Nothing at all when both are empty.
+    // Face `face` of `map`: begins its pass over `area` (the texels its translucent casters cover:
+    // covered_texels() in offscreen.h) and what the last render drew — r cleared to 1, g to depth
+    // 1 there, the rest kept — and, for each of the two pipelines — nearest depth into g, then
+    // r ×= 1 − α — binds it and calls `draw_translucent()`. Nothing at all when both are empty.
     void render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,
                 const std::function<void()>& draw_translucent) const;
 

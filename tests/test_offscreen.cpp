@@ -1,11 +1,10 @@
 // test_offscreen.cpp — lab 4's offscreen.h (layered render targets) and depth_view.h (the map view) on a
 // real device, validation on: each layer of a cube target cleared to its own depth, shown by the
 // depth view, read back at the squares' centres (positions and greys worked out by hand); and the
-// part of a transmittance map its pass covers (translucent_shadows.h, footprint).
+// part of a square target a set of boxes can cover (covered_texels).
 #include "depth_view.h"
 #include "headless_target.h"
 #include "offscreen.h"
-#include "translucent_shadows.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -95,39 +94,39 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
 
 }  // namespace
 
-// TranslucentShadows::footprint: the texels a transmittance pass must cover (worked out by hand:
+// covered_texels: the texels a pass must cover (worked out by hand:
 // a 100² map, NDC x, y ∈ [−1, 1] → texel (x + 1) · 50, then a texel to spare on each side).
-TEST(TranslucentFootprint, CoversTheBoxesProjectionAndNoMore) {
+TEST(CoveredTexels, CoversTheBoxesProjectionAndNoMore) {
     const glm::dmat4 ortho(1.0);  // world = clip, w = 1
     // x ∈ [−0.5, 0.5] → [25, 75] → [24, 76]; y ∈ [−0.25, 0.25] → [37.5, 62.5] → [36, 64].
-    const VkRect2D r = TranslucentShadows::footprint(ortho, {lab::Box{{-0.5, -0.25, 0.0}, {0.5, 0.25, 0.5}}}, 100);
+    const VkRect2D r = covered_texels(ortho, {lab::Box{{-0.5, -0.25, 0.0}, {0.5, 0.25, 0.5}}}, 100);
     EXPECT_EQ(r.offset.x, 24);
     EXPECT_EQ(r.offset.y, 36);
     EXPECT_EQ(r.extent.width, 52u);
     EXPECT_EQ(r.extent.height, 28u);
     // Two boxes: the rectangle around both; one reaching past the map: cut at its edge.
-    const VkRect2D two = TranslucentShadows::footprint(
+    const VkRect2D two = covered_texels(
         ortho, {lab::Box{{-0.5, -0.25, 0.0}, {0.5, 0.25, 0.5}}, lab::Box{{0.8, 0.5, 0.0}, {1.5, 0.6, 0.1}}}, 100);
     EXPECT_EQ(two.offset.x, 24);
     EXPECT_EQ(two.offset.y, 36);
     EXPECT_EQ(two.extent.width, 76u);  // to 100
     EXPECT_EQ(two.extent.height, 45u);  // to ceil(80) + 1 = 81
     // No box, or a box wholly off the map: nothing to draw.
-    EXPECT_EQ(TranslucentShadows::footprint(ortho, {}, 100).extent.width, 0u);
-    EXPECT_EQ(TranslucentShadows::footprint(ortho, {lab::Box{{2.0, 2.0, 0.0}, {3.0, 3.0, 1.0}}}, 100).extent.width, 0u);
+    EXPECT_EQ(covered_texels(ortho, {}, 100).extent.width, 0u);
+    EXPECT_EQ(covered_texels(ortho, {lab::Box{{2.0, 2.0, 0.0}, {3.0, 3.0, 1.0}}}, 100).extent.width, 0u);
 }
 
-TEST(TranslucentFootprint, PerspectiveBoxesBehindOrAcrossTheLight) {
+TEST(CoveredTexels, PerspectiveBoxesBehindOrAcrossTheLight) {
     // A perspective map looking down −z from the origin (90°, near 0.1, far 10): w = −z.
     const glm::dmat4 look = glm::perspectiveRH_ZO(glm::radians(90.0), 1.0, 0.1, 10.0);
     // In front, at z = −2: x ∈ [−1.1, 0.9] → NDC [−0.55, 0.45] → [22.5, 72.5] → [21, 74].
-    const VkRect2D front = TranslucentShadows::footprint(look, {lab::Box{{-1.1, -1.0, -2.0}, {0.9, 1.0, -2.0}}}, 100);
+    const VkRect2D front = covered_texels(look, {lab::Box{{-1.1, -1.0, -2.0}, {0.9, 1.0, -2.0}}}, 100);
     EXPECT_EQ(front.offset.x, 21);
     EXPECT_EQ(front.extent.width, 53u);
     // Wholly behind the light (z > 0): clipped away, nothing.
-    EXPECT_EQ(TranslucentShadows::footprint(look, {lab::Box{{-1.0, -1.0, 1.0}, {1.0, 1.0, 2.0}}}, 100).extent.width, 0u);
+    EXPECT_EQ(covered_texels(look, {lab::Box{{-1.0, -1.0, 1.0}, {1.0, 1.0, 2.0}}}, 100).extent.width, 0u);
     // Across the light's plane: its projection has no bound, so the whole map.
-    const VkRect2D across = TranslucentShadows::footprint(look, {lab::Box{{0.5, 0.5, -1.0}, {0.6, 0.6, 1.0}}}, 100);
+    const VkRect2D across = covered_texels(look, {lab::Box{{0.5, 0.5, -1.0}, {0.6, 0.6, 1.0}}}, 100);
     EXPECT_EQ(across.offset.x, 0);
     EXPECT_EQ(across.offset.y, 0);
     EXPECT_EQ(across.extent.width, 100u);
