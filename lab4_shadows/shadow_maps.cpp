@@ -17,6 +17,13 @@ const char* const kLightKinds[] = {"directional", "point", "spot"};  // LightDes
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
 
+// A depth-bias clamp rounded down to eight steps per octave (a bound stays a bound). Why: lavapipe
+// compiles its triangle setup (LLVM) for each distinct constant / slope / clamp triple it meets and
+// keeps 64 of them; a clamp that changed with every move of a light cost one compile per caster per
+// frame (the default scene's point light: 28 of its 29 ms; swlike's map ≈ 13 ms). On the grid the
+// values repeat, so a moving light finds them compiled.
+float on_grid(double clamp) { return clamp > 0.0 ? float(std::exp2(std::floor(std::log2(clamp) * 8.0) / 8.0)) : 0.0f; }
+
 bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
 
 // What the images depend on: each shadow-casting light's index, type and resolution; whether
@@ -246,7 +253,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     const double most_texels = std::max(1.0, double(light.shadow.slope_bias));
     if (vk_.enabled_features().depthBiasClamp)
         for (size_t i = 0; i < objects_.size(); ++i)
-            if (in_map[i]) most_bias[i] = float(f.depth_of_texels(objects_[i].box, most_texels / map.depth.size));
+            if (in_map[i]) most_bias[i] = on_grid(f.depth_of_texels(objects_[i].box, most_texels / map.depth.size));
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
     // and their boxes, whose covered_texels() on each face are all its transmittance pass draws.
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
