@@ -206,7 +206,9 @@ void LabApp::run_window(const Callbacks& lab_callbacks) {
 void LabApp::show_frame_time(Clock::time_point woke) {
     const float work_ms = float(1000.0 * seconds_since(woke));
     recent_frames_.add(work_ms);
-    if (shown_frame_ms_ == 0.0f || woke - shown_at_ >= std::chrono::milliseconds(500)) {
+    // Also while no GPU time is shown: a frame's times arrive a frame or two later (after its
+    // fence), and a window drawn on demand may draw only those few frames.
+    if (shown_frame_ms_ == 0.0f || shown_gpu_ms_.empty() || woke - shown_at_ >= std::chrono::milliseconds(500)) {
         shown_frame_ms_ = recent_frames_.median();
         shown_gpu_ms_.clear();
         for (const dev::PassTime& pass : dev_->gpu_passes().recent_medians()) shown_gpu_ms_.emplace_back(pass.name, float(pass.ms));
@@ -272,7 +274,8 @@ void LabApp::gpu_times_ui() {
     for (const auto& [name, ms] : shown_gpu_ms_) sum += ms;
     // A fold of its own, closed at first so the panels keep their places (the label changes with
     // the sum; "###" keeps its id, and its state). Open it to see each pass.
-    const std::string label = "GPU " + format_ms(sum) + " ms/frame###gpu passes";
+    const std::string label =
+        (shown_gpu_ms_.empty() ? std::string("GPU: no frame timed yet") : "GPU " + format_ms(sum) + " ms/frame") + "###gpu passes";
     const bool open = ImGui::TreeNodeEx(label.c_str(), ImGuiTreeNodeFlags_None);
     // The panel was sized to its first frame, before any pass was timed: refit its height when
     // the lines below change, or they would push the panel's own widgets out of sight.
@@ -280,6 +283,7 @@ void LabApp::gpu_times_ui() {
     if (lines != gpu_lines_shown_) ImGui::SetWindowSize(ImVec2(ImGui::GetWindowWidth(), 0.0f));
     gpu_lines_shown_ = lines;
     if (!open) return;
+    if (shown_gpu_ms_.empty()) ImGui::TextDisabled("times arrive after a frame's fence: tick continuous rendering");
     for (const auto& [name, ms] : shown_gpu_ms_) ImGui::TextDisabled("%s %.2f ms", name.c_str(), ms);
     ImGui::TreePop();
 }
