@@ -67,7 +67,7 @@ lab::Handle<VkImageView> create_view(const lab::VulkanContext& vk, VkImage image
 
 void image_barrier(VkCommandBuffer cmd, VkImage image, uint32_t base_level, uint32_t level_count, VkImageLayout from,
                    VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-                   VkPipelineStageFlags dst_stage) {
+                   VkPipelineStageFlags dst_stage, uint32_t layer_count) {
     VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
     // The memory dependency: the writes of `src_access` (e.g. a copy's TRANSFER_WRITE) made
     // available and visible to `dst_access` (e.g. the fragment shader's SHADER_READ). Without it
@@ -81,7 +81,7 @@ void image_barrier(VkCommandBuffer cmd, VkImage image, uint32_t base_level, uint
     b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;  // no hand-over between queue families
     b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base_level, level_count, 0, 1};
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base_level, level_count, 0, layer_count};
     // The execution dependency: `dst_stage` of later commands waits for `src_stage` of earlier
     // ones (TOP_OF_PIPE as the source: wait for nothing).
     vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);

@@ -29,9 +29,10 @@ lab::Image create_image_2d(const lab::VulkanContext& vk, VkExtent2D extent, VkFo
 lab::Handle<VkImageView> create_view(const lab::VulkanContext& vk, VkImage image, VkImageViewType view_type,
                                      VkFormat format, const VkImageSubresourceRange& range);
 
-// Moves the colour levels [base_level, base_level + level_count) of `image` from layout `from` to
-// `to`: what `src_access` wrote in `src_stage` is made visible to `dst_access` in `dst_stage`,
-// and nothing in `dst_stage` starts on those levels before the transition is done.
+// Moves the colour levels [base_level, base_level + level_count) of `image` (of its first
+// `layer_count` layers) from layout `from` to `to`: what `src_access` wrote in `src_stage` is made
+// visible to `dst_access` in `dst_stage`, and nothing in `dst_stage` starts on those levels before
+// the transition is done.
 void image_barrier(VkCommandBuffer cmd, VkImage image, uint32_t base_level, uint32_t level_count, VkImageLayout from,
                    VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-                   VkPipelineStageFlags dst_stage);
+                   VkPipelineStageFlags dst_stage, uint32_t layer_count = 1);

@@ -264,13 +264,14 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
 
     // The panel's GPU time per map: "map: spot 1" (light 1), its transmittance map's beside it.
     const std::string pass = std::string("map: ") + kLightKinds[int(light.type)] + " " + std::to_string(map.light);
+    const std::string translucent_pass = "translucent " + pass;
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);
         // Only the casters whose box reaches this face: a cube face sees a quarter of the scene or
         // less, and lavapipe pays for every triangle sent, on screen or not (2D maps are fitted to
-        // their casters: all reach them).
+        // their casters: all reach them, nothing to cull).
         std::vector<bool> in_face = in_map;
-        for (size_t i = 0; i < objects_.size(); ++i)
+        for (size_t i = 0; map.cube && i < objects_.size(); ++i)
             if (in_face[i] && covered_texels(world_to_clip, {objects_[i].box}, map.depth.size).extent.width == 0)
                 in_face[i] = false;
         {
@@ -281,7 +282,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
             vkCmdEndRenderPass(cmd);
         }
         if (translucent_->active()) {
-            const lab::TimedPass timed(timer, cmd, "translucent " + pass);
+            const lab::TimedPass timed(timer, cmd, translucent_pass);
             translucent_->render(cmd, map.translucent, face, map.cube,
                                  covered_texels(world_to_clip, translucent, map.depth.size),
                                  [&] { draw_casters(cmd, world_to_clip, lighting, true, in_face, nullptr, {}); });

@@ -33,6 +33,9 @@ void Instruments::frame_drawn(RenderTarget& target, VkExtent2D extent, uint64_t 
 }
 
 void Instruments::window_went_idle() {
+    // The device is idle: the last frames' GPU times are there (a window drawn on demand may draw
+    // no further frame that would read them), so the panel shows them at its next frame.
+    gpu_passes_.collect();
     give_back_free_memory();
     if (status_) status_->went_idle();
 }
