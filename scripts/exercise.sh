@@ -200,6 +200,7 @@ left_out() {
     echo docs/diffs  # lab N-1 → lab N is lab N's solution; the earlier ones are instructor material
     echo site        # the course site: its pages show every lab and the diffs
     echo docs/solutions  # the answers the exercises' comments do not give (instructors only)
+    echo docs/solutions.md  # the instructors' policy: where every answer is, what to hand out when
     later_test_files "$n"
     # A scene folder (models, textures) that only later labs' scene files use: every JSON file that
     # names it ("textures/bricks.png") is left out. A folder no JSON file names stays.

@@ -2,10 +2,9 @@
 //
 // The student edition of lab N is built from a real student copy (`scripts/exercise.sh labN --out
 // TMP`): common/, labs 1..N-1 complete, lab N with its exercises stubbed, no later lab, no
-// docs/diffs/, no site/. Into that copy go:
+// docs/diffs/, no site/, no docs/solutions* (instructor material). Into that copy go:
 //   - docs/diffs/lessons.md with the sections of labs 2..N only, and the diffs made from it by the
 //     copy's own scripts/make_diffs.sh (so the diff into lab N shows lab N's stubs, not its answers);
-// and out of it goes docs/solutions.md (instructor policy, it names where every answer is).
 //
 // Later labs in the text (laterLabText): a Markdown section — a heading and its text up to the next
 // heading — that mentions a later lab is left out together with the sections under it. "Mentions"
@@ -38,7 +37,6 @@ export function prepareStudentTree(root, lab, n) {
     }
   };
   run('the student copy', [path.join(root, 'scripts/exercise.sh'), lab, '--out', tree], root);
-  fs.rmSync(path.join(tree, 'docs/solutions.md'), { force: true });
   // The manifest, cut to the labs the copy has; the copy's make_diffs.sh writes the diffs from its labs.
   const kept = [];
   let keep = true;

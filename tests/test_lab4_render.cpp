@@ -85,13 +85,12 @@ Judged judge(const std::string& name, const json& scene, int band = kBand) {
     j.actual = lab::read_png(png);
     EXPECT_EQ(ref::magenta_pixels(j.actual), 0u) << "NaN/Inf in " << png;
     const lab::Scene s = lab::load_scene(file);
-    j.reference = ref::render_shadow_reference(s, kWidth, kHeight);
+    ref::ShadowMetricOptions options;
+    options.band = band;
+    j.metric = ref::judge_shadows(s, j.actual, options, &j.reference);
     j.shadowed = ref::encode_srgb(j.reference.shadowed);
     j.unshadowed = ref::encode_srgb(j.reference.unshadowed);
     j.unlit = ref::encode_srgb(j.reference.unlit);
-    ref::ShadowMetricOptions options;
-    options.band = band;
-    j.metric = ref::shadow_metric(j.actual, j.shadowed, j.unshadowed, j.unlit, options);
     // For a failure: expected | actual | the metric's picture.
     lab::write_png(kLab.path(name + "_expected.png"), j.shadowed);
     lab::write_png(kLab.path(name + "_metric.png"), ref::shadow_metric_picture(j.shadowed, j.metric));

@@ -248,4 +248,15 @@ RefImage crop_margin(const RefImage& image, int margin) {
     return out;
 }
 
+ShadowMetric judge_shadows(const lab::Scene& scene, const lab::Image8& actual, ShadowMetricOptions options,
+                           ShadowReference* reference) {
+    options.margin = options.band;
+    const ShadowReference wide = render_shadow_reference(scene, actual.width, actual.height, options.margin);
+    ShadowMetric metric = shadow_metric(actual, encode_srgb(wide.shadowed), encode_srgb(wide.unshadowed),
+                                        encode_srgb(wide.unlit), options);
+    *reference = {crop_margin(wide.shadowed, options.margin), crop_margin(wide.unshadowed, options.margin),
+                  crop_margin(wide.unlit, options.margin)};
+    return metric;
+}
+
 }  // namespace ref

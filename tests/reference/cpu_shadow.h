@@ -21,6 +21,7 @@
 #pragma once
 
 #include "reference/cpu_reference.h"
+#include "reference/image_compare.h"
 
 #include <glm/glm.hpp>
 
@@ -70,5 +71,12 @@ struct ShadowReference {
     RefImage shadowed, unshadowed, unlit;
 };
 ShadowReference render_shadow_reference(const lab::Scene& scene, int width, int height, int margin = 0);
+
+// The shadow error metric of `actual` (the lab's picture of `scene`) against the reference, which
+// is rendered options.band pixels larger on every side (options.margin = band): the band then
+// also holds the pixels near a shadow edge just outside the frame. `*reference` is set to the
+// frame's pictures (cropped). Every test that judges a shadow picture goes through here.
+ShadowMetric judge_shadows(const lab::Scene& scene, const lab::Image8& actual, ShadowMetricOptions options,
+                           ShadowReference* reference);
 
 }  // namespace ref
