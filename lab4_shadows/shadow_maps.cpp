@@ -68,8 +68,10 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                   .dynamic_depth_bias()
                   .depth_clamp(vk.enabled_features().depthClamp)
                   .build(vk, depth_pass_);
-    // The second lesson: transmittance maps beside the depth maps (translucent_shadows.cpp).
-    translucent_.emplace(vk, depth_format_, lighting.translucent_casters, casters, vertex_shader, shader_dir);
+    // The second lesson: transmittance maps beside the depth maps (translucent_shadows.cpp), with
+    // as many layers as a ray can cross translucent faces.
+    translucent_layers_ = translucent_layers(lighting);
+    translucent_.emplace(vk, depth_format_, translucent_layers_, casters, vertex_shader, shader_dir);
 
     const std::vector<int> slots = lighting.shadow_slots();
     for (size_t i = 0; i < lighting.lights.size(); ++i) {
@@ -136,7 +138,20 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
     }
 }
 
-bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }
+bool ShadowMaps::matches(const Lighting& lighting) const {
+    return layout_of(lighting) == layout_ && translucent_layers(lighting) == translucent_layers_;
+}
+
+// K, the transmittance maps' layers: the most translucent front faces (as a light sees them) a
+// ray can cross — one per convex caster, two per other (a torus: a ray may cross both its sides),
+// at most TranslucentShadows::kMaxLayers; 0 when no caster is translucent.
+uint32_t ShadowMaps::translucent_layers(const Lighting& lighting) const {
+    if (!lighting.translucent_casters) return 0;
+    uint32_t faces = 0;
+    for (const Caster& c : objects_)
+        if (c.casts && translucent_material(lighting, c.material)) faces += c.convex ? 1 : 2;
+    return std::clamp(faces, 1u, TranslucentShadows::kMaxLayers);
+}
 
 void ShadowMaps::draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
@@ -182,16 +197,17 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
 
 // Draws the map's casters (`in_map`, casters_for) into the current pass: opaque ones with the
 // bound depth-only pipeline and the light's depth bias, at most `most_bias[i]` for caster i, or
-// (translucent, no `most_bias`) the translucent ones with both translucent pipelines.
+// (translucent, no `most_bias`) the translucent ones into transmittance layer `layer`.
 void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting,
                               bool translucent, const std::vector<bool>& in_map, const lab::ShadowDesc* bias,
-                              const std::vector<float>& most_bias) const {
+                              const std::vector<float>& most_bias, uint32_t layer) const {
     const lab::GpuMesh* bound = nullptr;
     for (size_t i = 0; i < objects_.size(); ++i) {
         const Caster& c = objects_[i];
         if (!in_map[i] || translucent_material(lighting, c.material) != translucent) continue;
         const ShadowConstants constants{glm::mat4(world_to_clip * glm::dmat4(c.model)),
-                                        glm::vec4(1.0f - lighting.materials[c.material].opacity)};
+                                        glm::vec4(1.0f - lighting.materials[c.material].opacity, float(layer),
+                                                  translucent_->peel_slack(), 0.0f)};
         if (c.mesh != bound) {
             lab::bind_mesh(cmd, *c.mesh);
             bound = c.mesh;
@@ -257,7 +273,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
     // and their boxes, whose covered_texels() on each face are all its transmittance pass draws.
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
-                                    0.0f, 0.0f, 0.0f);
+                                    float(translucent_->layers()), 0.0f, 0.0f);
     std::vector<Box> translucent;
     for (size_t i = 0; i < objects_.size(); ++i)
         if (in_map[i] && translucent_material(lighting, objects_[i].material)) translucent.push_back(objects_[i].box);
@@ -285,7 +301,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
             const lab::TimedPass timed(timer, cmd, translucent_pass);
             translucent_->render(cmd, map.translucent, face, map.cube,
                                  covered_texels(world_to_clip, translucent, map.depth.size),
-                                 [&] { draw_casters(cmd, world_to_clip, lighting, true, in_face, nullptr, {}); });
+                                 [&](uint32_t layer) { draw_casters(cmd, world_to_clip, lighting, true, in_face, nullptr, {}, layer); });
         }
     }
 }

@@ -1,7 +1,8 @@
-// translucent_shadows.cpp — transmittance maps: their format, render pass and two blending
+// translucent_shadows.cpp — transmittance maps: their format, render pass, layers and the peel's
 // pipelines, and the depth tolerance the lookup uses (translucent_shadows.h).
 #include "translucent_shadows.h"
 
+#include "cube_map.h"
 #include "image.h"
 #include "shader.h"
 
@@ -22,22 +23,42 @@ VkRect2D merged(VkRect2D a, VkRect2D b) {
 }
 }  // namespace
 
-TranslucentShadows::TranslucentShadows(const lab::VulkanContext& vk, VkFormat depth_format, bool active,
+TranslucentShadows::TranslucentShadows(const lab::VulkanContext& vk, VkFormat depth_format, uint32_t layers,
                                        const lab::PipelineBuilder& casters, VkShaderModule vertex_shader,
                                        const std::string& shader_dir)
-    : depth_format_(depth_format), active_(active), vk_(vk) {
+    : depth_format_(depth_format), layers_(std::min(layers, kMaxLayers)), vk_(vk) {
     // Two channels the pass blends into and the lookup samples: 32-bit float where the device
     // blends it, else 16-bit.
     const VkFormatFeatureFlags blend_use = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     format_ = format_supports(vk, VK_FORMAT_R32G32_SFLOAT, blend_use) ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT;
     pass_ = make_offscreen_pass(vk, format_, depth_format);
-    if (!active) return;
+    if (!active()) return;
+    // The peel: the pass of layer k reads layer k − 1 at its own texel (set 0, binding 0), a
+    // different layer of the same image, written by the pass before (its dependency makes the
+    // writes visible to this fragment shader). Layer 0 reads a 1×1 image that holds nothing.
+    previous_layout_ = lab::make_descriptor_set_layout(vk, {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}});
+    texel_sampler_ = make_depth_sampler(vk, false, false);
+    nothing_ = create_image_2d(vk, {1, 1}, format_, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                               VK_IMAGE_ASPECT_COLOR_BIT);
+    vk.run_once([&](VkCommandBuffer cmd) {
+        const VkImage image = nothing_.image.get();
+        image_barrier(cmd, image, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        const VkClearColorValue nothing{{1.0f, 1.0f, 0.0f, 0.0f}};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nothing, 1, &all);
+        image_barrier(cmd, image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    });
     const lab::Handle<VkShaderModule> fragment_shader = lab::load_shader(vk, shader_dir, "translucent_shadow.frag");
     for (int cube = 0; cube < 2; ++cube) {
         // Front faces as the light sees them; a cube face's view mirrors the winding. (A caster
         // whose transform mirrors is inside out, here as in the camera's pass and the
         // reference: docs/scene-format.md, "Negative scale".)
         const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
+        VkPipelineColorBlendAttachmentState rg{};  // the nearest face's 1 − α and depth
+        rg.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT;
         VkPipelineColorBlendAttachmentState g{};  // the nearest face's depth into g
         g.colorWriteMask = VK_COLOR_COMPONENT_G_BIT;
         // r = r · (1 − α): src · 0 + dst · src (alpha: kept), into r only.
@@ -45,7 +66,8 @@ TranslucentShadows::TranslucentShadows(const lab::VulkanContext& vk, VkFormat de
                                                     VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
                                                     VK_COLOR_COMPONENT_R_BIT};
         lab::PipelineBuilder builder = casters;
-        builder.shaders(vertex_shader, fragment_shader).cull(back).depth_clamp(vk.enabled_features().depthClamp);
+        builder.shaders(vertex_shader, fragment_shader).descriptor_set(previous_layout_).cull(back).depth_clamp(vk.enabled_features().depthClamp);
+        layer_[cube] = builder.color_blend(rg).depth(true, true).build(vk, pass_);
         nearest_[cube] = builder.color_blend(g).depth(true, true).build(vk, pass_);
         multiply_[cube] = builder.color_blend(r).depth(false, false).build(vk, pass_);
     }
@@ -53,46 +75,76 @@ TranslucentShadows::TranslucentShadows(const lab::VulkanContext& vk, VkFormat de
 
 TranslucentShadows::Map TranslucentShadows::make_map(uint32_t resolution, bool cube) const {
     Map m;
-    // One scratch depth serves every face (the faces are rendered one after the other).
+    // One scratch depth serves every layer (the layers are rendered one after the other).
     m.scratch_depth = create_image_2d(vk_, {resolution, resolution}, depth_format_,
                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-    // TRANSFER_DST: the first clear (below) is a copy-engine clear.
-    const VkImageUsageFlags usage =
-        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    m.transmittance = create_layered_target(vk_, pass_, resolution, cube, format_, usage, VK_IMAGE_ASPECT_COLOR_BIT,
-                                            {m.scratch_depth.view});
+    // One 2D array of K layers per face (a cube: layer face·K + k): the lookup picks the face
+    // itself, as it does for the cube's depth map (cube_map.h). TRANSFER_DST: the first clear
+    // (below) is a copy-engine clear.
+    const uint32_t faces = cube ? 6 : 1, count = faces * layers();
+    VkImageCreateInfo info = image_info_2d({resolution, resolution}, format_,
+                                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                               VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                           1);
+    info.arrayLayers = count;
+    LayeredTarget& t = m.transmittance;
+    t.image = create_image(vk_, info, VK_IMAGE_VIEW_TYPE_2D_ARRAY, VK_IMAGE_ASPECT_COLOR_BIT);
+    t.pass = pass_.get();
+    t.size = resolution;
+    t.color = true;
+    for (uint32_t layer = 0; layer < count; ++layer) {
+        t.layer_views.push_back(create_layer_view(vk_, t.image.image.get(), format_, VK_IMAGE_ASPECT_COLOR_BIT, layer));
+        t.framebuffers.push_back(make_square_framebuffer(vk_, pass_.get(), {t.layer(layer), m.scratch_depth.view.get()}, resolution));
+    }
     // The pass keeps what lies outside its render area, so it starts from the layout the lookup
-    // reads (offscreen.h): every face is cleared whole to "nothing translucent" once, here, and
+    // reads (offscreen.h): every layer is cleared whole to "nothing translucent" once, here, and
     // left in that layout.
     vk_.run_once([&](VkCommandBuffer cmd) {
-        const VkImage image = m.transmittance.image.image.get();
-        const uint32_t faces = m.transmittance.layers();
+        const VkImage image = t.image.image.get();
         image_barrier(cmd, image, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, faces);
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, count);
         const VkClearColorValue nothing{{1.0f, 1.0f, 0.0f, 0.0f}};  // as begin_offscreen_pass clears
-        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, faces};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, count};
         vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nothing, 1, &all);
         // The lookup reads it next; the pass's own dependency orders its later writes.
         image_barrier(cmd, image, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                       VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, faces);
+                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, count);
     });
-    m.drawn.assign(m.transmittance.layers(), VkRect2D{});
+    m.drawn.assign(faces, VkRect2D{});
+    if (!active()) return m;
+    // The peel's reads: layer i reads layer i − 1 of its face (k = 0: nothing).
+    const std::vector<lab::DescriptorBinding> binding = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+    m.pool = lab::make_descriptor_pool(vk_, binding, count);
+    for (uint32_t layer = 0; layer < count; ++layer) {
+        m.previous.push_back(lab::allocate_descriptor_set(vk_, m.pool.get(), previous_layout_.get()));
+        const VkImageView read = layer % layers() == 0 ? nothing_.view.get() : t.layer(layer - 1);
+        lab::write_image_descriptor(vk_, m.previous.back(), 0, texel_sampler_.get(), read);
+    }
     return m;
 }
 
 void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,
-                                const std::function<void()>& draw_translucent) const {
+                                const std::function<void(uint32_t layer)>& draw_translucent) const {
     // Where to draw, and where the last render drew and must be cleared back to r = g = 1.
     const VkRect2D pass_area = merged(area, map.drawn[face]);
     map.drawn[face] = area;
     if (pass_area.extent.width == 0 || pass_area.extent.height == 0) return;
-    map.transmittance.begin(cmd, face, 1.0f, pass_area);
-    for (const auto* pipeline : {&nearest_[cube], &multiply_[cube]}) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
-        draw_translucent();
+    const uint32_t K = layers();
+    for (uint32_t k = 0; k < K; ++k) {
+        const uint32_t layer = face * K + k;
+        map.transmittance.begin(cmd, layer, 1.0f, pass_area);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layer_[cube].layout, 0, 1, &map.previous[layer], 0,
+                                nullptr);
+        // Before the last layer: the nearest face beyond layer k − 1. The last: every face beyond it.
+        const bool last = k + 1 == K;
+        for (const auto* pipeline : {last ? &nearest_[cube] : &layer_[cube], last ? &multiply_[cube] : nullptr}) {
+            if (!pipeline) continue;
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
+            draw_translucent(k);
+        }
+        vkCmdEndRenderPass(cmd);
     }
-    vkCmdEndRenderPass(cmd);
 }
 
 // A receiver less than kTranslucentTexels texels (world units, t) behind the nearest translucent

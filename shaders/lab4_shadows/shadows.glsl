@@ -40,8 +40,9 @@ struct ShadowSlot {
                            // the distance along its axis (which function? the README, "Two passes",
                            // and shadow_maps.cpp, where they are computed); z > 0 also marks a
                            // perspective 2D map (spot)
-    vec4 translucent;      // x: how far (in depth) a receiver must lie behind the nearest translucent
-                           // caster to be behind it; perspective maps: divided by P's distance along the axis
+    vec4 translucent;      // x: how far (in depth) a receiver must lie behind a translucent caster to
+                           // be behind it; perspective maps: divided by P's distance along the axis;
+                           // y: the transmittance map's layers per face, K
 };
 layout(std140, set = 0, binding = 3) uniform Shadows { ShadowSlot shadow_slots[4]; };
 // The same depth maps twice: read as numbers (nearest) and through a comparison sampler
@@ -65,7 +66,7 @@ float pcf_share(vec4 c, int bx, int by, int pcf, vec2 f) {
 }
 
 // Directional and spot lights: P projected into the map; PCF averages N×N taps one texel apart.
-float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D translucent_map, int pcf, int filter_mode,
+float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray translucent_map, int pcf, int filter_mode,
                 bool translucent, ShadowSlot s, vec3 P, vec3 N) {
     // Normal offset: look the map up a little off the surface (in texels), so a surface does not
     // shadow itself where the map's texel stands at an angle to it (acne).
@@ -88,8 +89,8 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // where it does. In front of the near plane (0): only casters clamped there can be nearer.
     const float ref = clamp(ndc.z, 0.0, 1.0);
     const float tolerance = s.translucent.x * inv_w;  // translucent casters, see above
-    // Translucent casters: their transmittance where P projects (once, not per tap).
-    const vec2 transmittance = translucent ? texture(translucent_map, lookup).rg : vec2(1.0);
+    // Translucent casters: the light their layers let through to P (once, not per tap).
+    const float through = translucent_light(translucent, translucent_map, vec3(lookup, 0.0), s, ref, tolerance);
     // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
     // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
     // around it and weights the results like a linear filter (what a comparison sampler does with
@@ -99,7 +100,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
     // (pcf_share weights each).
     if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
         const float stored = texture(depth_map, lookup).r;
-        return outside ? 1.0 : tap(ref <= stored ? 1.0 : 0.0, translucent, transmittance, ref, tolerance);
+        return outside ? 1.0 : (ref <= stored ? through : 0.0);
     }
     const vec2 size = vec2(textureSize(depth_map, 0));
     const vec2 texel = filter_mode == 1 ? lookup * size - 0.5 : lookup * size;
@@ -113,7 +114,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2D tran
         }
     }
     const float opaque = sum / float(pcf * pcf);
-    return outside ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
+    return outside ? 1.0 : opaque * through;
 }
 
 // For P at v from the light (v = P − light): its distance along the axis of the cube face it falls
@@ -165,10 +166,10 @@ float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sa
     // Beyond the far plane (past the farthest caster): compared as 1, as in shadow_2d.
     const float ref = clamp(cube_depth_of(to_p, s), 0.0, 1.0);
     const float tolerance = translucent ? s.translucent.x / z : 0.0;  // translucent casters, see above
-    const vec2 transmittance = translucent ? texture(translucent_map, face).rg : vec2(1.0);
+    const float through = translucent_light(translucent, translucent_map, face, s, ref, tolerance);
     if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
         const float stored = texture(depth_map, face).r;
-        return at_light ? 1.0 : tap(ref <= stored ? 1.0 : 0.0, translucent, transmittance, ref, tolerance);
+        return at_light ? 1.0 : (ref <= stored ? through : 0.0);
     }
     // The footprint and its weights, as in shadow_2d.
     const float size = float(textureSize(depth_map, 0).x);
@@ -184,7 +185,7 @@ float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sa
         }
     }
     const float opaque = sum / float(pcf * pcf);
-    return at_light ? 1.0 : tap(opaque, translucent && opaque > 0.0, transmittance, ref, tolerance);
+    return at_light ? 1.0 : opaque * through;
 }
 
 // Slot i's lookup with slot i's constants (samplers are picked with constant indices).

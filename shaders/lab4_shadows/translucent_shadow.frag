@@ -1,16 +1,24 @@
 #version 450
 // translucent_shadow.frag — lab 4: translucent casters in a light's transmittance map, drawn
-// with their front faces as the light sees them (a convex object counts once). Two pipelines
-// share it (translucent_shadows.cpp): one writes g = the nearest such face's depth (depth test on), the
-// other multiplies r by 1 − opacity (blending dst·src), so r = Π(1 − opacity) along the ray.
+// with their front faces as the light sees them (a convex object counts once), one layer per
+// pass (translucent_shadows.cpp). The peel: the pass of layer k sees only the faces beyond layer
+// k − 1 — a face no farther than the one that layer holds was peeled off already. Among those the
+// depth test keeps the nearest: its depth into g and its 1 − α into r, or, in the last layer, the
+// nearest depth into g and, blended dst·src, r = Π(1 − α) of them all.
 
 layout(push_constant) uniform ShadowConstants {
     mat4 light_mvp;
-    vec4 transmittance;  // x = 1 − opacity
+    vec4 transmittance;  // x = 1 − opacity, y = the layer k, z = the peel's slack (0: 32-bit layers)
 } caster;
+
+layout(set = 0, binding = 0) uniform sampler2D previous;  // layer k − 1 (k = 0: a 1×1 "nothing")
 
 layout(location = 0) out vec4 out_value;
 
 void main() {
+    if (caster.transmittance.y > 0.5) {  // k ≥ 1: the same for every fragment of the draw
+        const float peeled = texelFetch(previous, ivec2(gl_FragCoord.xy), 0).g;
+        if (gl_FragCoord.z <= peeled * (1.0 + caster.transmittance.z)) discard;
+    }
     out_value = vec4(caster.transmittance.x, gl_FragCoord.z, 0.0, 0.0);
 }

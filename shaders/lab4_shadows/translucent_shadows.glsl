@@ -1,24 +1,39 @@
 // translucent_shadows.glsl — lab 4's second lesson: shadows of translucent casters. A light's
-// transmittance map (lab4_shadows/translucent_shadows.cpp renders it beside the depth map) says,
-// per texel, how much light the translucent casters along its ray let through and where the
-// nearest of them is. Included by shadows.glsl; its lookups call tap() for every PCF tap.
+// transmittance map (lab4_shadows/translucent_shadows.cpp renders it beside the depth map) holds,
+// per texel, the translucent casters' front faces along its ray, nearest first, one per layer: where
+// each is and how much light it lets through. Included by shadows.glsl; its lookups call
+// translucent_light() once per lookup.
 
-// Translucent casters: r = Π(1 − opacity) of the front faces (as the light sees them) along
-// the texel's ray, g = the depth of the nearest one.
-layout(set = 0, binding = 8) uniform sampler2D translucency[4];
-layout(set = 0, binding = 9) uniform sampler2DArray cube_translucency[4];  // a cube's faces (layer = face)
+// Translucent casters, K layers per face (layer face·K + k; a 2D map: face 0): layer k holds the
+// (k+1)-th front face (as the light sees them) along the texel's ray, r = its 1 − opacity, g = its
+// depth; r = g = 1 where there is none. (Past K faces the last layer holds r = Π(1 − opacity) of
+// the rest, g = the nearest of them.)
+layout(set = 0, binding = 8) uniform sampler2DArray translucency[4];
+layout(set = 0, binding = 9) uniform sampler2DArray cube_translucency[4];  // a cube's faces, K layers each
 
 // A receiver less than 2 texels (in world units) behind the nearest translucent caster is that
 // caster itself. In depth that is K / z, z = P's distance along the map's axis (an orthographic
 // map: z = 1, K as it is; K from the map, translucent_shadows.cpp): a fixed tolerance in depth
 // would not do, perspective depth crowds towards 1 (1e-4 of it is metres at a far light).
 
-// One tap's light: `lit` (1 or 0) from the depth compare, and what the translucent casters along
-// the ray do to it (exercise translucent_tap; `tolerance`, in depth, see above).
+// One layer's share: `lit`, the light that reached the layers before, and what the face this layer
+// holds does to it (exercise translucent_tap; `tolerance`, in depth, see above).
 float tap(float lit, bool translucent, vec2 transmittance, float ref, float tolerance) {
     // EXERCISE translucent_tap: when does the light pass through the translucent casters before reaching P, and how much of it is left (what do r and g of the transmittance map hold)? Wrong: a glass object casts no shadow, or shadows itself. Checked by Lab4Shadows.TranslucentShadowFromAFarSpot, Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply.
     // STUB: return lit;  // translucent casters let all the light through
     if (translucent && ref > transmittance.g + tolerance) lit *= transmittance.r;
     return lit;
     // END EXERCISE
+}
+
+// The light the translucent casters let through to P at depth `ref`: `at` = (s, t, face) in the
+// map, every layer of that face in turn. Only faces in front of P count — never P's own face,
+// never a face behind it — so a glass receiver under a glass caster gets the caster's 1 − α, and
+// the floor under both the product. Without translucent casters (a constant): 1, no lookup.
+float translucent_light(bool translucent, sampler2DArray map, vec3 at, ShadowSlot s, float ref, float tolerance) {
+    const int layers = translucent ? int(s.translucent.y) : 0;
+    float lit = 1.0;
+    for (int k = 0; k < layers; ++k)
+        lit = tap(lit, true, texture(map, vec3(at.xy, at.z * float(layers) + float(k))).rg, ref, tolerance);
+    return lit;
 }
