@@ -219,10 +219,12 @@ void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_cl
 }
 
 // Which objects a light's map holds (per object): those with cast_shadows, inside a spot's cone,
-// that can shadow a receiver — another object, or themselves when their mesh is not convex (a
-// convex object shadows only its own unlit side). The map is fitted to them and draws only them:
-// a floor under everything would only spread the texels and cost a draw.
-std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light) const {
+// that can shadow a receiver — another object, or themselves when their mesh is not convex or
+// they are translucent (an opaque convex object shadows only its own unlit side; through a
+// translucent one the camera sees its inner far faces, which its near faces shadow). The map is
+// fitted to them and draws only them: a floor under everything would only spread the texels and
+// cost a draw.
+std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light, const Lighting& lighting) const {
     const glm::dvec3 position(light.position), direction(light.direction);
     const bool directional = light.type == lab::LightDesc::Type::Directional, spot = light.type == lab::LightDesc::Type::Spot;
     std::vector<bool> in_map(objects_.size(), false);
@@ -230,7 +232,7 @@ std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light) const {
         const Box& c = objects_[i].box;
         if (!objects_[i].casts || (spot && !in_spot_cone(c, position, direction, light.outer_deg))) continue;
         for (size_t j = 0; j < objects_.size() && !in_map[i]; ++j)
-            if (i != j || !objects_[i].convex)
+            if (i != j || !objects_[i].convex || translucent_material(lighting, objects_[i].material))
                 in_map[i] = directional ? can_shadow(c, objects_[j].box, direction) : can_shadow_from(c, objects_[j].box, position);
     }
     return in_map;
@@ -239,7 +241,7 @@ std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light) const {
 void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting,
                         lab::PassTimer* timer) {
     const glm::dvec3 position(light.position), direction(light.direction);
-    const std::vector<bool> in_map = casters_for(light);
+    const std::vector<bool> in_map = casters_for(light, lighting);
     std::vector<Box> casters;
     for (size_t i = 0; i < objects_.size(); ++i)
         if (in_map[i]) casters.push_back(objects_[i].box);

@@ -81,7 +81,7 @@ private:
                       uint32_t layer = 0) const;
     uint32_t translucent_layers(const Lighting& lighting) const;
     uint32_t clamp_resolution(int requested, bool cube) const;
-    std::vector<bool> casters_for(const lab::LightDesc& light) const;
+    std::vector<bool> casters_for(const lab::LightDesc& light, const Lighting& lighting) const;
 
     const lab::VulkanContext& vk_;
     std::vector<Caster> objects_;
