@@ -5,9 +5,17 @@
 // the widest the format allows (90°), opaque and translucent casters down to 0.001 thick,
 // mirrored and non-uniform transforms, groups of casters far from the origin.
 //
-//   lab4_random_scenes (--first N --count M | --seeds A,B,…) [--size WxH] [--huge-bias] [--keep]
+//   lab4_random_scenes (--first N --count M | --seeds A,B,…) [--translucent-stacks] [--size WxH] [--huge-bias] [--keep]
 //
 // --seeds: the listed seeds alone (CTest's lab4_random_scenes_regressions: seeds that failed once).
+// --translucent-stacks: another kind of scene from the same seeds (generate_stacks(), below): 2-4
+// translucent objects over each other on screen and in the light's view — slabs stacked one over
+// part of the next (translucent receivers under translucent casters, points between two layers),
+// objects nested inside a bigger one, or objects cutting into each other — with 0-2 opaque casters
+// as in the default scenes, every light type, the same scales. Any seed range can be judged again
+// this way (CTest: lab4_random_scenes_translucent_stacks, seeds 0-39; `bash
+// bench/lab4_random_scenes.sh 3000 BUILD_DIR -- --translucent-stacks` the long version). Without the
+// option every seed gives the scene it always gave (generate() and its random sequence are untouched).
 // --huge-bias: every light's constant depth bias factor at the format's most (10⁶). The device
 // turns it into depth itself (a float map's unit is 2^(e − 23), e from the triangle's depth range),
 // so these scenes stand for a device whose unit comes out huge (as an NVIDIA GPU's can for a
@@ -193,17 +201,232 @@ Generated generate(uint64_t seed) {
     return {s, line};
 }
 
+// --- --translucent-stacks: another kind of scene from the same seeds ---------------------------------
+// Several translucent objects over each other, on screen and in the light's view, over the floor and
+// beside the default scenes' opaque content: 2-4 of them, one of three arrangements —
+//   stacked:      slabs one above the other, each shifted sideways a little (less than its size), so
+//                 that it covers part of the one below (translucent receivers under translucent
+//                 casters, points between two layers);
+//   nested:       up to 3 objects inside a bigger one (inner and outer layers alternate along a ray);
+//   intersecting: objects cutting into each other (their faces cross: no order of whole objects).
+// Resolvable by construction as the default scenes are (the same scale, the light and the camera
+// placed from the group's size, so a map texel at the casters stays under a camera pixel), and
+// besides: in the stacked and nested arrangements two translucent surfaces one above the other are
+// at least 0.15 g apart along any ray (slabs ≥ 0.15 g thick with ≥ 0.3 g of air between them; inner
+// objects ≥ 0.15 g inside the outer one's inscribed sphere and their spheres 0.15 g apart), many
+// texels, where a transmittance map needs 2 to tell a layer from the one behind it. Closer only
+// where two faces cross (intersecting objects; an opaque caster placed through the stack), and
+// there the reference's shadow edge and its band are. Its own random sequence: the default scenes
+// do not change.
+
+// The half height of a box of half extents `h` turned by rotation_deg (M = Rz · Ry · Rx).
+double half_height(const glm::dvec3& h, const glm::dvec3& degrees) {
+    const glm::dvec3 a = glm::radians(degrees);
+    const double cx = std::cos(a.x), sx = std::sin(a.x), cy = std::cos(a.y), sy = std::sin(a.y), cz = std::cos(a.z), sz = std::sin(a.z);
+    // The second row of Rz · Ry · Rx.
+    const glm::dvec3 row(sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx);
+    return std::abs(row.x) * std::abs(h.x) + std::abs(row.y) * std::abs(h.y) + std::abs(row.z) * std::abs(h.z);
+}
+
+Generated generate_stacks(uint64_t seed) {
+    Rng r(seed);
+    const double g = r.log_uniform(0.01, 400.0);
+    const glm::dvec3 centre = r.chance(0.4) ? r.direction(-0.3, 0.3) * (g * r.uniform(0.0, 2.0))
+                                            : r.direction(-0.3, 0.3) * std::min(1e4, g * r.log_uniform(10.0, 1e4));
+    json s;
+    s["background"] = {0.05, 0.05, 0.06};
+    s["ambient"] = {{"intensity", 0.08}};
+    s["lighting"] = {{"nan_check", "on"}};
+    s["materials"] = {{"floor", {{"albedo", {0.8, 0.8, 0.8}}}},
+                      {"red", {{"albedo", {0.8, 0.3, 0.2}}}},
+                      {"green", {{"albedo", {0.3, 0.7, 0.35}}}},
+                      {"glass", {{"albedo", {0.3, 0.5, 0.9}}, {"opacity", 0.35}}},
+                      {"amber", {{"albedo", {0.9, 0.6, 0.1}}, {"opacity", 0.6}}},
+                      {"ruby", {{"albedo", {0.85, 0.12, 0.15}}, {"opacity", 0.5}}},
+                      {"jade", {{"albedo", {0.1, 0.75, 0.3}}, {"opacity", 0.45}}},
+                      {"smoke", {{"albedo", {0.55, 0.55, 0.55}}, {"opacity", 0.25}}},
+                      {"ink", {{"albedo", {0.15, 0.2, 0.6}}, {"opacity", 0.75}}}};
+    const char* see_through[] = {"glass", "amber", "ruby", "jade", "smoke", "ink"};
+    const double floor_half = std::min(5e3, g * r.log_uniform(4.0, 2e3));
+    const glm::dvec3 floor_at = centre + glm::dvec3(r.uniform(-0.5, 0.5), 0.0, r.uniform(-0.5, 0.5)) * std::min(floor_half, 3.0 * g);
+    s["objects"] = json::array();
+    s["objects"].push_back({{"mesh", "plane"}, {"material", "floor"}, {"position", vec(floor_at)},
+                            {"scale", {2.0 * floor_half, 1.0, 2.0 * floor_half}}});
+    struct Piece {
+        std::string mesh, material;
+        glm::dvec3 at, scale, rotation;
+        double radius;  // a sphere around it (the unit cube's corners)
+    };
+    const auto piece = [&](const std::string& mesh, const glm::dvec3& at, const glm::dvec3& scale, const glm::dvec3& rotation) {
+        return Piece{mesh, see_through[r.pick(6)], at, scale, rotation, 0.5 * glm::length(scale)};
+    };
+    const auto any_rotation = [&] { return glm::dvec3(r.uniform(-180, 180), r.uniform(-180, 180), r.uniform(-180, 180)); };
+    std::vector<Piece> stack;
+    const int count = 2 + r.pick(3);
+    const int arrangement = r.pick(3);
+    std::string what;
+    if (arrangement == 0) {  // stacked slabs, each over part of the one below
+        what = "stacked";
+        double top = 0.0;  // the top of the slab below (its box turned), relative to the stack's foot
+        for (int i = 0; i < count; ++i) {
+            const double thickness = g * r.uniform(0.15, 0.4);
+            const glm::dvec3 scale(g * r.uniform(1.2, 2.4), thickness, g * r.uniform(1.2, 2.4));
+            const glm::dvec3 rotation(r.uniform(-15, 15), r.uniform(-180, 180), r.uniform(-15, 15));
+            const double half = half_height(0.5 * scale, rotation);
+            const double y = (i == 0 ? 0.0 : top + g * r.uniform(0.3, 0.7)) + half;
+            top = y + half;
+            stack.push_back(piece("cube", glm::dvec3(g * r.uniform(-0.4, 0.4), y, g * r.uniform(-0.4, 0.4)), scale, rotation));
+        }
+    } else if (arrangement == 1) {  // 1-3 objects inside a bigger one
+        what = "nested";
+        const bool cube = r.chance(0.5);
+        const double size = g * r.uniform(1.6, 2.6);
+        const double inscribed = size * (cube ? 0.5 : 0.397);  // the icosahedron's inradius: 0.397 of its circumradius 0.5
+        stack.push_back(piece(cube ? "cube" : "icosahedron", glm::dvec3(0.0), glm::dvec3(size), any_rotation()));
+        // The inner ones apart from each other too (their spheres 0.15 g apart; one that finds no
+        // room in 20 tries is left out): nested, not intersecting.
+        const double most = count == 2 ? 0.7 : 0.45;
+        for (int i = 1; i < count; ++i)
+            for (int tries = 0; tries < 20; ++tries) {
+                const glm::dvec3 scale = inscribed * glm::dvec3(r.uniform(0.35, most), r.uniform(0.35, most), r.uniform(0.35, most));
+                const double radius = 0.5 * glm::length(scale);
+                const double room = std::max(0.0, inscribed - radius - 0.15 * g);
+                const glm::dvec3 at = r.direction() * (room * r.uniform(0.0, 1.0));
+                bool apart = true;
+                for (size_t k = 1; k < stack.size(); ++k)
+                    apart = apart && glm::length(at - stack[k].at) > stack[k].radius + radius + 0.15 * g;
+                if (!apart) continue;
+                stack.push_back(piece(r.chance(0.5) ? "cube" : "icosahedron", at, scale, any_rotation()));
+                break;
+            }
+    } else {  // objects cutting into each other
+        what = "intersecting";
+        for (int i = 0; i < count; ++i) {
+            const glm::dvec3 scale(g * r.uniform(0.7, 1.5), g * r.uniform(0.7, 1.5), g * r.uniform(0.7, 1.5));
+            Piece p = piece(r.chance(0.5) ? "cube" : "icosahedron", glm::dvec3(0.0), scale, any_rotation());
+            if (i > 0) {  // into one of those before, by 30-70 % of their spheres' reach
+                const Piece& other = stack[size_t(r.pick(i))];
+                p.at = other.at + r.direction(-0.6, 0.6) * ((other.radius + p.radius) * r.uniform(0.3, 0.7));
+            }
+            stack.push_back(p);
+        }
+    }
+    const int translucent = int(stack.size());
+    // Mirrored now and then (a negative scale: inside out).
+    int mirrored = 0;
+    for (Piece& p : stack)
+        if (r.chance(0.15)) {
+            p.scale[r.pick(3)] *= -1.0;
+            ++mirrored;
+        }
+    // The stack stands over the floor near the group's centre: its lowest sphere 0.1-0.6 g above it.
+    double lowest = 1e300;
+    for (const Piece& p : stack) lowest = std::min(lowest, p.at.y - p.radius);
+    const glm::dvec3 foot = centre + glm::dvec3(g * r.uniform(-0.5, 0.5), g * r.uniform(0.1, 0.6) - lowest, g * r.uniform(-0.5, 0.5));
+    for (Piece& p : stack) p.at += foot;
+    // The opaque content of the default scenes: 0-2 cubes and icosahedra, some thin or mirrored,
+    // anywhere around the stack (over it, under it, through it).
+    const int opaque = r.pick(3);
+    int thin = 0;
+    for (int i = 0; i < opaque; ++i) {
+        glm::dvec3 scale(g * r.uniform(0.3, 1.2), g * r.uniform(0.3, 1.2), g * r.uniform(0.3, 1.2));
+        if (r.chance(0.3)) {
+            scale[r.pick(3)] = r.log_uniform(0.001, std::max(0.0011, 0.05 * g));
+            ++thin;
+        }
+        if (r.chance(0.25)) {
+            scale[r.pick(3)] *= -1.0;
+            ++mirrored;
+        }
+        const double radius = 0.5 * glm::length(scale);
+        const glm::dvec3 at = centre + glm::dvec3(g * r.uniform(-2.0, 2.0), radius + g * r.uniform(0.05, 2.5), g * r.uniform(-2.0, 2.0));
+        stack.push_back({r.chance(0.5) ? "cube" : "icosahedron", r.chance(0.5) ? "red" : "green", at, scale, any_rotation(), radius});
+    }
+    for (const Piece& p : stack)
+        s["objects"].push_back({{"mesh", p.mesh}, {"material", p.material}, {"position", vec(p.at)}, {"scale", vec(p.scale)},
+                                {"rotation_deg", vec(p.rotation)}});
+    // The group: its middle and how far it reaches from there.
+    glm::dvec3 middle(0.0);
+    for (const Piece& p : stack) middle += p.at;
+    middle /= double(stack.size());
+    double reach = g;
+    for (const Piece& p : stack) reach = std::max(reach, glm::length(p.at - middle) + p.radius);
+    const auto outside = [&](const glm::dvec3& q) {
+        if (q.y < centre.y + 0.1 * g) return false;
+        for (const Piece& p : stack)
+            if (glm::length(q - p.at) < p.radius * 1.05 + 1e-3 * g) return false;
+        return true;
+    };
+    // The light, as in the default scenes, at distances measured from the group's reach.
+    json light;
+    std::string kind;
+    const int type = r.pick(3);
+    if (type == 0) {
+        const glm::dvec3 d = r.chance(0.1) ? glm::dvec3(0.0, -1.0, 0.0) : r.direction(-1.0, -0.25);
+        light = {{"type", "directional"}, {"direction", vec(d)}};
+        kind = "directional";
+    } else {
+        glm::dvec3 p;
+        double outer = 0.0;
+        const bool far_spot = type == 2 && r.chance(0.35);
+        for (int tries = 0;; ++tries) {
+            // Near lights: just outside the group up to ~20 caster sizes away; far spots 30-300 g.
+            const double distance = far_spot ? std::clamp(r.log_uniform(100.0, 1e5), 30.0 * g, 300.0 * g)
+                                             : reach * r.uniform(0.6, 1.2) + g * r.log_uniform(0.1, 15.0);
+            p = middle + r.direction(0.2, 1.0) * distance;
+            if (outside(p)) break;
+            if (tries > 50) {  // straight up, beyond every caster
+                p = middle + glm::dvec3(0.0, reach + g, 0.0);
+                break;
+            }
+        }
+        if (type == 1) {
+            light = {{"type", "point"}, {"position", vec(p)}};
+            kind = "point";
+        } else {
+            const glm::dvec3 aim = middle + glm::dvec3(r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5)) * g;
+            const double cover = glm::degrees(std::atan2(reach + 2.0 * g, glm::length(aim - p)));
+            outer = far_spot ? std::clamp(cover * r.uniform(1.0, 2.0), 0.6, 89.0)
+                             : (r.chance(0.3) ? r.uniform(80.0, 90.0) : r.uniform(15.0, 80.0));
+            light = {{"type", "spot"}, {"position", vec(p)}, {"direction", vec(aim - p)},
+                     {"outer_deg", outer}, {"inner_deg", outer * r.uniform(0.3, 0.9)}};
+            kind = far_spot ? "far spot" : "spot";
+        }
+        char text[96];
+        std::snprintf(text, sizeof text, " at %.3g from the group", glm::length(p - middle));
+        kind += text;
+        if (type == 2) {
+            std::snprintf(text, sizeof text, ", outer %.1f deg", outer);
+            kind += text;
+        }
+    }
+    light["cast_shadows"] = true;
+    light["intensity"] = 1.2;
+    if (r.chance(0.25)) light["shadow"] = {{"pcf", 3}, {"filter", r.chance(0.5) ? "bilinear" : "nearest"}};
+    s["lights"] = json::array({light});
+    // The camera: 1.2-2 times the group's reach (plus a caster size) from its middle, looking down at it.
+    const glm::dvec3 eye = middle + r.direction(0.3, 0.85) * ((reach + g) * r.uniform(1.2, 2.0));
+    const double far = glm::length(eye - floor_at) + 3.0 * floor_half;
+    s["camera"] = {{"position", vec(eye)}, {"target", vec(middle)}, {"fov_y_deg", 55}, {"near", 0.05 * g}, {"far", far}};
+
+    char line[256];
+    std::snprintf(line, sizeof line, "stacks: g=%.3g off-centre %.3g, floor %.3g across, %d translucent %s + %d opaque (%d thin, %d mirrored), %s",
+                  g, glm::length(centre), 2.0 * floor_half, translucent, what.c_str(), opaque, thin, mirrored, kind.c_str());
+    return {s, line};
+}
+
 struct Options {
     uint64_t first = 0;
     int count = 50;
     std::vector<uint64_t> seeds;  // --seeds: these instead of first … first + count − 1
     bool huge_bias = false;
+    bool translucent_stacks = false;  // generate_stacks() instead of generate()
     int width = 128, height = 96;
     bool keep = false;
 };
 
 int usage(const char* why) {
-    std::fprintf(stderr, "lab4_random_scenes: %s\nusage: lab4_random_scenes (--first N --count M | --seeds A,B,...) [--size WxH] [--huge-bias] [--keep]\n", why);
+    std::fprintf(stderr, "lab4_random_scenes: %s\nusage: lab4_random_scenes (--first N --count M | --seeds A,B,...) [--translucent-stacks] [--size WxH] [--huge-bias] [--keep]\n", why);
     return 2;
 }
 
@@ -227,6 +450,7 @@ int main(int argc, char** argv) {
                 at = comma + 1;
             }
         } else if (a == "--huge-bias") o.huge_bias = true;
+        else if (a == "--translucent-stacks") o.translucent_stacks = true;
         else if (a == "--keep") o.keep = true;
         else return usage(("unknown option " + a).c_str());
     }
@@ -240,14 +464,16 @@ int main(int argc, char** argv) {
     std::string worst;
     const auto start = std::chrono::steady_clock::now();
     for (const uint64_t seed : o.seeds) {
-        Generated gen = generate(seed);
+        Generated gen = o.translucent_stacks ? generate_stacks(seed) : generate(seed);
         if (o.huge_bias) {
             for (json& light : gen.scene["lights"]) light["shadow"]["bias"] = 1e6;
             gen.summary += ", huge bias";
         }
-        const std::string name = dir + "/seed" + std::to_string(seed);
-        const std::string scene = write_file(dir, "seed" + std::to_string(seed) + ".json", gen.scene.dump(1));
-        const RenderResult run = render_lab(LAB4_EXE, scene, dir, "seed" + std::to_string(seed), o.width, o.height);
+        // Each kind its own files (CTest runs the shards side by side in one folder).
+        const std::string stem = (o.translucent_stacks ? "stacks_seed" : "seed") + std::to_string(seed);
+        const std::string name = dir + "/" + stem;
+        const std::string scene = write_file(dir, stem + ".json", gen.scene.dump(1));
+        const RenderResult run = render_lab(LAB4_EXE, scene, dir, stem, o.width, o.height);
         std::string verdict;
         double share = 1.0;
         if (!run.ok()) {
@@ -322,8 +548,9 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("lab4_random_scenes: %d of %d scenes (seeds %llu..%llu) within %.1f %% wrong side; worst %.4f %%: %s; %.1f s\n",
-                int(o.seeds.size()) - failed, int(o.seeds.size()), (unsigned long long)*std::min_element(o.seeds.begin(), o.seeds.end()),
+    std::printf("lab4_random_scenes: %d of %d %s (seeds %llu..%llu) within %.1f %% wrong side; worst %.4f %%: %s; %.1f s\n",
+                int(o.seeds.size()) - failed, int(o.seeds.size()), o.translucent_stacks ? "translucent-stack scenes" : "scenes",
+                (unsigned long long)*std::min_element(o.seeds.begin(), o.seeds.end()),
                 (unsigned long long)*std::max_element(o.seeds.begin(), o.seeds.end()),
                 100.0 * kMaxWrongShare, 100.0 * worst_share, worst.c_str(), seconds);
     return failed ? 1 : 0;

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <string>
 
@@ -362,6 +363,303 @@ TEST(Lab4Shadows, SpotConeOf178Degrees) {
     SCOPED_TRACE(describe(j, "spot_178"));
     EXPECT_GT(std::count(j.metric.state.begin(), j.metric.state.end(), 2), 300);
     EXPECT_LE(j.metric.wrong_side_share, 0.001);
+}
+
+// --- translucent layers ---------------------------------------------------------------------------
+// Several translucent objects over each other, on screen and in a light's view: the camera pass must
+// blend every layer in depth order per pixel, whatever the order of the objects list (objects that
+// intersect or nest have no order of their own), and the light reaching a point is Π(1 − α) over the
+// translucent faces between it and the light (never its own face, never a layer behind it). The
+// expected values are the reference's (cpu_shadow.h); the classifications below (which layer a pixel
+// shows first, what light reaches it) are the reference's geometry too.
+
+// Materials with colours far apart, so that blending two layers in the wrong order shows.
+json layered_scene() {
+    json s = base_scene();
+    s["materials"]["ruby"] = {{"albedo", {0.85, 0.1, 0.15}}, {"opacity", 0.55}};
+    s["materials"]["jade"] = {{"albedo", {0.1, 0.75, 0.3}}, {"opacity", 0.5}};
+    s["materials"]["sky"] = {{"albedo", {0.2, 0.4, 0.95}}, {"opacity", 0.45}};
+    return s;
+}
+
+// What the reference's primary ray through pixel i crosses, as render_shadowed sees it: the
+// translucent layers (near to far) in front of the nearest opaque front face, and that face.
+struct Surface {
+    int object = -1;
+    bool front = true;  // crossed from its front side (the side the camera sees)
+    glm::dvec3 position{0.0}, normal{0.0};
+};
+struct PixelLayers {
+    std::vector<Surface> layers;
+    Surface base;  // object −1: the background
+};
+std::vector<PixelLayers> pixel_layers(const lab::Scene& scene, int width, int height) {
+    const ref::SceneGeometry geometry(scene);
+    const ref::Camera camera = ref::make_camera(scene.camera);
+    std::vector<double> opacity;
+    for (const lab::ObjectDesc& o : scene.objects) {
+        const auto it = scene.materials.find(o.material);
+        opacity.push_back(it == scene.materials.end() ? 1.0 : double(it->second.opacity));
+    }
+    std::vector<PixelLayers> out(size_t(width) * size_t(height));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const ref::Ray ray = ref::primary_ray(camera, width, height, x + 0.5, y + 0.5);
+            std::vector<ref::CrossedTriangle> crossed;
+            geometry.for_each_hit(ray, camera.near_plane, camera.far_plane, [&](const ref::CrossedTriangle& c) {
+                crossed.push_back(c);
+                return true;
+            });
+            std::sort(crossed.begin(), crossed.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
+            PixelLayers& p = out[size_t(y) * size_t(width) + size_t(x)];
+            for (const ref::CrossedTriangle& c : crossed) {
+                const ref::Hit h = geometry.hit_of(c);
+                const Surface s{c.object_id, c.front, h.position, h.geometric_normal};
+                if (opacity[size_t(c.object_id)] < 1.0) {
+                    if (p.layers.empty() || p.layers.back().object != s.object || p.layers.back().front != s.front ||
+                        glm::length(p.layers.back().position - s.position) > 1e-9 * (1.0 + glm::length(s.position)))
+                        p.layers.push_back(s);
+                } else if (c.front) {
+                    p.base = s;
+                    break;
+                }
+            }
+        }
+    return out;
+}
+
+// Pixels deep inside one area of the reference picture: `mask` set, the same surfaces (object_id,
+// which also encodes the translucent layers in front) and the same colour (±1) over the (2r+1)²
+// neighbourhood, and a light that shows (U − Z ≥ 3/255). The largest |actual − S| there.
+Interior flat_interior(const Judged& j, const std::vector<uint8_t>& mask, int r = 4) {
+    Interior in;
+    const int w = j.shadowed.width, h = j.shadowed.height;
+    const auto at = [&](const lab::Image8& im, int x, int y, int ch) { return int(im.rgba[(size_t(y) * w + x) * 4 + ch]); };
+    for (int y = r; y < h - r; ++y)
+        for (int x = r; x < w - r; ++x) {
+            const size_t i = size_t(y) * w + x;
+            if (!mask[i]) continue;
+            bool inside = true;
+            for (int dy = -r; dy <= r && inside; ++dy)
+                for (int dx = -r; dx <= r && inside; ++dx) {
+                    const size_t q = size_t(y + dy) * w + size_t(x + dx);
+                    inside = mask[q] && j.reference.shadowed.object_id[q] == j.reference.shadowed.object_id[i];
+                    for (int ch = 0; ch < 3 && inside; ++ch)
+                        inside = std::abs(at(j.shadowed, x + dx, y + dy, ch) - at(j.shadowed, x, y, ch)) <= 1;
+                }
+            if (!inside) continue;
+            int shows = 0;
+            for (int ch = 0; ch < 3; ++ch) shows = std::max(shows, std::abs(at(j.unshadowed, x, y, ch) - at(j.unlit, x, y, ch)));
+            if (shows < 3) continue;
+            ++in.pixels;
+            in.levels.insert(at(j.shadowed, x, y, 1));
+            for (int ch = 0; ch < 3; ++ch)
+                in.max_diff = std::max(in.max_diff, std::abs(at(j.actual, x, y, ch) - at(j.shadowed, x, y, ch)));
+        }
+    return in;
+}
+
+// The camera pass where translucent layers show, against the reference, with the edge mask left out
+// (ref::edge_mask: a 3×3 neighbourhood whose reference ids differ — object and layer boundaries): the
+// per-pixel difference (largest channel, 1/255) on average and how many pixels are more than 4/255
+// off, over the pixels showing `fewest` … `most` different translucent objects.
+struct LayeredDiff {
+    size_t pixels = 0, off = 0;
+    double mean = 0.0;
+    int max_diff = 0;
+    std::string line() const {
+        return "pixels=" + std::to_string(pixels) + " mean=" + std::to_string(mean) + " max=" + std::to_string(max_diff) +
+               " over_4=" + std::to_string(off);
+    }
+};
+LayeredDiff layered_diff(const Judged& j, int fewest, int most) {
+    const std::vector<uint8_t> edges = ref::edge_mask(j.reference.shadowed);
+    LayeredDiff d;
+    double sum = 0.0;
+    for (size_t i = 0; i < edges.size(); ++i) {
+        const int objects = j.reference.shadowed.translucent_objects[i];
+        if (edges[i] || objects < fewest || objects > most) continue;
+        int diff = 0;
+        for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(j.actual.rgba[4 * i + c]) - int(j.shadowed.rgba[4 * i + c])));
+        ++d.pixels;
+        sum += diff;
+        d.off += diff > 4;
+        d.max_diff = std::max(d.max_diff, diff);
+    }
+    d.mean = sum / double(std::max<size_t>(d.pixels, 1));
+    return d;
+}
+
+// Renders `objects` (translucent ones, over a floor) in the order given and compares the camera
+// pass where they show with the reference: within the render tests' rounding (the thresholds of
+// MirroredTranslucentCubeMatchesTheReference) where one object shows and where two or more do
+// (at least `min_overlap` such pixels). The lights cast no shadow: this is the blending order alone.
+void expect_layers_match(const std::string& name, const std::vector<json>& objects, size_t min_overlap) {
+    json s = layered_scene();
+    s["camera"] = {{"position", {0.3, 2.3, 2.9}}, {"target", {0, 0.85, 0}}, {"fov_y_deg", 55}, {"near", 0.05}, {"far", 100}};
+    s["lights"].push_back({{"type", "directional"}, {"direction", {-0.4, -1, -0.5}}, {"intensity", 0.7}, {"cast_shadows", false}});
+    s["lights"].push_back({{"type", "point"}, {"position", {1.5, 2.5, 2.0}}, {"intensity", 0.4}, {"cast_shadows", false}});
+    s["objects"].push_back(floor());
+    for (const json& o : objects) s["objects"].push_back(o);
+    const Judged j = judge(name, s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, name));
+    const LayeredDiff one = layered_diff(j, 1, 1), two = layered_diff(j, 2, 255);
+    SCOPED_TRACE("where a translucent object shows: " + one.line() + "; where two or more overlap: " + two.line());
+    EXPECT_GT(two.pixels, min_overlap) << "the translucent objects must overlap on screen";
+    EXPECT_LE(one.mean, 1.0) << "mean difference where translucent objects show";
+    EXPECT_LE(one.off, one.pixels / 100) << "pixels more than 4/255 off where translucent objects show";
+    EXPECT_LE(two.mean, 1.0) << "mean difference where two or more translucent objects overlap";
+    EXPECT_LE(two.off, two.pixels / 100) << "pixels more than 4/255 off where two or more translucent objects overlap";
+}
+
+// Two translucent cubes that cut into each other: where they intersect, a ray crosses A's front
+// face, B's front face, A's back face, B's back face — no order of whole objects gives that.
+TEST(Lab4Translucency, TwoIntersectingTranslucentCubesInEitherOrder) {
+    const json a = thing("cube", "ruby", {-0.35, 0.9, 0.1}, {1.2, 1.2, 1.2}, {10, 30, 0});
+    const json b = thing("cube", "jade", {0.35, 0.8, -0.2}, {1.1, 1.1, 1.1}, {0, -25, 15});
+    {
+        SCOPED_TRACE("ruby first");
+        expect_layers_match("layers_two_cubes_ab", {a, b}, 1000);
+    }
+    SCOPED_TRACE("jade first");
+    expect_layers_match("layers_two_cubes_ba", {b, a}, 1000);
+}
+
+// A translucent icosahedron inside a bigger translucent cube, the same centre: the cube's back,
+// the icosahedron (back, front), the cube's front. Whole objects sorted by centre tie here.
+TEST(Lab4Translucency, TranslucentIcosahedronInsideATranslucentCubeInEitherOrder) {
+    const json cube = thing("cube", "sky", {0, 0.95, 0}, {1.8, 1.8, 1.8}, {0, 20, 0});
+    const json ico = thing("icosahedron", "ruby", {0, 0.95, 0}, {1.1, 1.1, 1.1}, {15, 10, 0});
+    {
+        SCOPED_TRACE("cube first");
+        expect_layers_match("layers_nested_cube_ico", {cube, ico}, 1000);
+    }
+    SCOPED_TRACE("icosahedron first");
+    expect_layers_match("layers_nested_ico_cube", {ico, cube}, 1000);
+}
+
+// Three translucent objects over each other — two intersecting cubes and a tilted quad through
+// both — in all six orders of the objects list: the same, correct picture every time.
+TEST(Lab4Translucency, ThreeOverlappingTranslucentObjectsInAllSixOrders) {
+    const std::vector<json> objects = {thing("cube", "ruby", {-0.45, 0.85, 0.1}, {1.1, 1.1, 1.1}, {10, 30, 0}),
+                                       thing("icosahedron", "jade", {0.4, 0.9, -0.1}, {1.3, 1.3, 1.3}, {0, 15, 20}),
+                                       thing("plane", "sky", {0, 0.9, 0.1}, {2.8, 1, 1.6}, {70, 0, 10})};
+    std::vector<int> order = {0, 1, 2};
+    do {
+        std::string name = "layers_three";
+        std::vector<json> list;
+        for (const int k : order) {
+            name += "_" + std::to_string(k);
+            list.push_back(objects[size_t(k)]);
+        }
+        SCOPED_TRACE("objects in the order " + name.substr(13));
+        expect_layers_match(name, list, 3000);
+    } while (std::next_permutation(order.begin(), order.end()));
+}
+
+// Translucent receivers and casters stacked under one light, for each light type. `stack`: the
+// objects over the floor (object 0), from the light down; `areas`: what to check, each a set of
+// pixels chosen on the reference's geometry.
+struct Area {
+    std::string what;
+    std::function<bool(const PixelLayers&, const ref::ShadowCasters&, const lab::LightDesc&)> holds;
+};
+bool near_value(double a, double b) { return std::abs(a - b) <= 1e-6; }
+
+// The lights of the stacks, each with its light travelling towards +x and down, so that a slab's
+// shadow falls beside it (on the next slab down, on the floor), where the camera (on the +z side)
+// sees it directly.
+std::vector<std::pair<std::string, json>> stack_lights(const std::string& prefix) {
+    return {{prefix + "_directional", directional({0.6, -1, 0.05})},
+            {prefix + "_spot", spot({-2.2, 4.4, 0.3}, {2.5, -4.4, -0.2}, 50)},
+            {prefix + "_point", point({-2.4, 4.2, 0.0})}};
+}
+
+void expect_stack_matches(const std::string& name, const json& light, const std::vector<json>& stack,
+                          const std::vector<Area>& areas) {
+    json s = layered_scene();
+    s["camera"] = {{"position", {0.4, 3.1, 3.0}}, {"target", {0.3, 0.9, 0.0}}, {"fov_y_deg", 55}, {"near", 0.05}, {"far", 100}};
+    s["lights"].push_back(light);
+    s["objects"].push_back(floor());
+    for (const json& o : stack) s["objects"].push_back(o);
+    const Judged j = judge(name, s);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, name));
+    const lab::Scene scene = lab::load_scene(kLab.path(name + ".json"));
+    const ref::ShadowCasters casters(scene);
+    const std::vector<PixelLayers> layers = pixel_layers(scene, kWidth, kHeight);
+    for (const Area& area : areas) {
+        std::vector<uint8_t> mask(layers.size(), 0);
+        for (size_t i = 0; i < layers.size(); ++i) mask[i] = area.holds(layers[i], casters, scene.lights[0]);
+        const Interior in = flat_interior(j, mask);
+        SCOPED_TRACE(area.what + ": " + std::to_string(std::count(mask.begin(), mask.end(), 1)) + " pixels, " +
+                     std::to_string(in.pixels) + " inside, largest difference " + std::to_string(in.max_diff));
+        EXPECT_GT(in.pixels, 300u) << "too little of it in view to check";
+        EXPECT_LE(in.max_diff, 2);
+    }
+    EXPECT_LE(j.metric.wrong_side_share, 0.002);
+}
+
+// The light reaching a surface (the reference's shadow ray from it).
+double light_at(const ref::ShadowCasters& casters, const lab::LightDesc& light, const Surface& s) {
+    return casters.transmittance(light, s.position, s.normal);
+}
+bool first_layer_is(const PixelLayers& p, int object) {
+    return !p.layers.empty() && p.layers[0].object == object && p.layers[0].front;
+}
+bool floor_seen_directly(const PixelLayers& p) { return p.layers.empty() && p.base.object == 0; }
+
+// A translucent slab (upper, ruby α 0.55) beside and above a bigger one (lower, jade α 0.5) over the
+// floor: the lower slab's lit face gets 1 − 0.55 where the upper one shadows it (not 0.45 · 0.5: its
+// own face never counts), the floor under both 0.45 · 0.5, under the lower one alone 0.5.
+TEST(Lab4Translucency, TranslucentReceiverUnderATranslucentCaster) {
+    const double upper = 1 - 0.55, lower = 1 - 0.5;
+    const std::vector<json> stack = {thing("cube", "ruby", {-1.0, 2.0, 0.0}, {1.2, 0.06, 1.6}),
+                                     thing("cube", "jade", {0.6, 1.0, 0.0}, {2.0, 0.06, 2.0})};
+    const std::vector<Area> areas = {
+        {"the lower slab's lit face in the upper one's shadow",
+         [&](const PixelLayers& p, const ref::ShadowCasters& c, const lab::LightDesc& l) {
+             return first_layer_is(p, 2) && near_value(light_at(c, l, p.layers[0]), upper);
+         }},
+        {"the lower slab's lit face in full light",
+         [&](const PixelLayers& p, const ref::ShadowCasters& c, const lab::LightDesc& l) {
+             return first_layer_is(p, 2) && near_value(light_at(c, l, p.layers[0]), 1.0);
+         }},
+        {"the floor under both slabs, seen directly",
+         [&](const PixelLayers& p, const ref::ShadowCasters& c, const lab::LightDesc& l) {
+             return floor_seen_directly(p) && near_value(light_at(c, l, p.base), upper * lower);
+         }},
+        {"the floor under the lower slab alone, seen directly",
+         [&](const PixelLayers& p, const ref::ShadowCasters& c, const lab::LightDesc& l) {
+             return floor_seen_directly(p) && near_value(light_at(c, l, p.base), lower);
+         }}};
+    for (const auto& [name, light] : stack_lights("stack_translucent")) {
+        SCOPED_TRACE(name);
+        expect_stack_matches(name, light, stack, areas);
+    }
+}
+
+// An opaque plate between two translucent slabs (ruby above, jade below): the plate's lit face gets
+// 1 − 0.55 where the ruby slab shadows it — the jade slab lies behind it and must not count.
+TEST(Lab4Translucency, ReceiverBetweenTwoTranslucentCasters) {
+    const double upper = 1 - 0.55;
+    const std::vector<json> stack = {thing("cube", "ruby", {-1.0, 2.2, 0.0}, {1.2, 0.06, 1.6}),
+                                     thing("cube", "box", {0.25, 1.5, 0.1}, {1.7, 0.06, 1.3}, {0, 15, 0}),
+                                     thing("cube", "jade", {0.8, 0.7, 0.0}, {2.4, 0.06, 2.0})};
+    const std::vector<Area> areas = {
+        {"the plate's lit face in the upper slab's shadow",
+         [&](const PixelLayers& p, const ref::ShadowCasters& c, const lab::LightDesc& l) {
+             return p.layers.empty() && p.base.object == 2 && near_value(light_at(c, l, p.base), upper);
+         }},
+        {"the plate's lit face in full light",
+         [&](const PixelLayers& p, const ref::ShadowCasters& c, const lab::LightDesc& l) {
+             return p.layers.empty() && p.base.object == 2 && near_value(light_at(c, l, p.base), 1.0);
+         }}};
+    for (const auto& [name, light] : stack_lights("stack_between")) {
+        SCOPED_TRACE(name);
+        expect_stack_matches(name, light, stack, areas);
+    }
 }
 
 // --- coverage -------------------------------------------------------------------------------------
