@@ -53,8 +53,13 @@ Lighting Lighting::from_scene(const lab::Scene& scene) {
     if (shadowed > kMaxShadowLights)
         std::fprintf(stderr, "warning: at most %d lights cast shadows: %ld cast none\n", kMaxShadowLights,
                      shadowed - kMaxShadowLights);
+    // Lab 4: K, the transmittance maps' layers: the most translucent front faces (as a light sees
+    // them) a ray can cross — one per convex caster, two per other (a torus: a ray may cross both
+    // its sides), at most TranslucentShadows::kMaxLayers (4); 0 when no caster is translucent.
+    int faces = 0;
     for (const lab::ObjectDesc& o : scene.objects)
-        l.translucent_casters = l.translucent_casters || (o.cast_shadows && scene.materials.at(o.material).opacity < 1.0f);
+        if (o.cast_shadows && scene.materials.at(o.material).opacity < 1.0f) faces += convex(o) ? 1 : 2;
+    l.translucent_layers = std::min(faces, 4);
     return l;
 }
 
@@ -155,7 +160,7 @@ Variant variant_of(const Lighting& l) {
         c[0] = uses_cube_map(l.lights[i]) ? 2 : 1;  // point lights and wide spots: a cube
         c[1] = s.pcf;
         c[2] = int32_t(s.filter);
-        c[3] = l.translucent_casters;
+        c[3] = l.translucent_layers;
         c[4] = shadow_light_id(type, k);
     }
     return v;

@@ -81,9 +81,12 @@ struct Lighting {
     bool mip_view = false;  // lab 3: tint textured pixels by the mip level they read
     bool animate_lights = false;  // lab 4: lights circle the scene's Y axis (what a moving light costs)
     int shadow_view = -1;         // lab 4: the light whose shadow map is shown (−1: none)
-    bool translucent_casters = false;  // lab 4: a shadow caster is translucent: the maps carry transmittance
+    int translucent_layers = 0;  // lab 4: a shadow caster is translucent: the maps' layers K (translucent_shadows.h), else 0
 
     static Lighting from_scene(const lab::Scene& scene);
+    // Lab 4: is the object's mesh convex (a ray crosses at most one of its front faces)? The
+    // primitives but the torus; an OBJ model is not assumed to be.
+    static bool convex(const lab::ObjectDesc& object) { return object.mesh_path.empty() && object.mesh != "torus"; }
     int material_index(const std::string& name) const;
     int count(lab::LightDesc::Type type) const;
     // Lab 4: each light's shadow slot: the first kMaxShadowLights lights with cast_shadows, −1 for the others.
@@ -101,7 +104,7 @@ namespace constant { enum : size_t { model, shading, directional_count, point_co
                                      // lab 3, per material (variant_of leaves them 0; the renderer sets them per draw)
                                      albedo_map, specular_map, emissive_map, distorted_sampling, probes, mip_view,
                                      // lab 4, per shadow slot s: shadows + 5s map kind (0 none, 1 2D, 2 cube),
-                                     // + 1 PCF kernel N, + 2 filter (0 nearest, 1 bilinear), + 3 translucent casters,
+                                     // + 1 PCF kernel N, + 2 filter (0 nearest, 1 bilinear), + 3 translucent layers K (0: none),
                                      // + 4 the light it belongs to (shadow_light_id, −1: none)
                                      shadows, count = shadows + 5 * kMaxShadowLights }; }
 // Lab 4: how the shaders name the k-th light of a type (0 directional, 1 point, 2 spot) in a slot's

@@ -2,12 +2,14 @@
 //
 // Lab 3's textured scene with shadows: each shadow-casting light renders a shadow map
 // (directional: fitted orthographic, spot: perspective, point: cube) before the camera's
-// pass, which reads it with PCF; translucent objects blend over the others and let
-// 1 − opacity of the light through. The "Shadows" panel edits it all live, shows a light's
-// map and animates the lights (--dev-animate-lights does that headless, for
-// --benchmark). The Vulkan half is here too: the shadow pass's render pass, images and
-// comparison sampler in offscreen.cpp, its pipelines in shadow_maps.cpp. The rest (the
-// Vulkan context, window, UI, scene file, image loading) comes from common/.
+// pass, which reads it with PCF; translucent objects let 1 − opacity of the light through, and in
+// the camera's pass their layers are sorted per pixel and blended over the others in depth order
+// (translucent_layers.h: per-pixel lists, cleared before the pass, composed at its end). The
+// "Shadows" panel edits it all live, shows a light's map and animates the lights
+// (--dev-animate-lights does that headless, for --benchmark). The Vulkan half is here too: the
+// shadow pass's render pass, images and comparison sampler in offscreen.cpp, its pipelines in
+// shadow_maps.cpp. The rest (the Vulkan context, window, UI, scene file, image loading) comes
+// from common/.
 //
 // Controls: W/S forward/back, A/D strafe, Space/Shift up/down (world Y),
 // left-drag rotates (Look-At: orbits the target), wheel changes the distance
@@ -148,7 +150,8 @@ int main(int argc, char** argv) {
         callbacks.ui = [&] {
             camera_panel(app, camera, controls, reloader);
             lighting_panel(lighting);
-            shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_map_renders());  // lab 4
+            const TranslucentLayers* layers = renderer->translucent_layers();  // lab 4: what the last frame's lists lost
+            shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_map_renders(), layers ? layers->summary() : "");
             if (textures_panel(lighting, renderer->texture_warnings(), renderer->anisotropic_auto(), app.average_frame_ms()) ||
                 !renderer->shadows_match(lighting)) {  // lab 4: or other lights cast shadows, other resolutions
                 // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
@@ -163,8 +166,18 @@ int main(int argc, char** argv) {
                            glm::vec3(camera.world_position()), lighting);
         };
         callbacks.background = [&] { return reloader.scene().background; };
-        callbacks.before_pass = [&](const lab::Frame& frame) { renderer->draw_shadow_maps(frame, lighting); };  // lab 4: before the pass
+        callbacks.before_pass = [&](const lab::Frame& frame) {  // lab 4: before the pass
+            renderer->clear_translucent_layers(frame);
+            renderer->draw_shadow_maps(frame, lighting);
+        };
         app.run(callbacks);
         std::printf("%s: %d shadow map renders\n", LAB_NAME, renderer->shadow_map_renders());
+        if (TranslucentLayers* layers = renderer->translucent_layers(); layers && !app.has_window()) {
+            layers->collect();  // the last frame's counts (the GPU is idle now)
+            if (layers->stats().overflow_pixels > 0 || layers->stats().dropped > 0) {
+                std::fflush(stdout);  // after the lines above
+                std::fprintf(stderr, "%s: warning: %s\n", LAB_NAME, layers->summary().c_str());
+            }
+        }
     });
 }

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
 
 namespace {
 // Objects that share a mesh (and its tessellation) share one GPU copy.
@@ -40,6 +42,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     // Geometry: upload each distinct mesh once, remember what to draw.
     lab::MeshLibrary library;  // reads each model file once
     std::vector<Caster> casters;  // lab 4: what the shadow maps draw
+    bool translucent = false;     // lab 4: does any object need the translucent layers?
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
@@ -54,10 +57,9 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         normal_matrix(lit.model, lit.normal_matrix);
         lit.material = uint32_t(lighting.material_index(object.material));
         const Box box = lab::transformed(it->second.bounds, glm::dmat4(lit.model));  // world space
-        items_.back().centre = glm::vec3(0.5 * (box.lo + box.hi));
-        items_.back().mirrored = glm::determinant(glm::dmat3(glm::dmat4(lit.model))) < 0.0;
-        const bool convex = object.mesh_path.empty() && object.mesh != "torus";  // primitives but the torus
-        casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows, convex});
+        items_.back().box = box;
+        translucent = translucent || lighting.materials[lit.material].opacity < 1.0f;
+        casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows, Lighting::convex(object)});
     }
     shadow_maps_ = std::make_unique<ShadowMaps>(vk, std::move(casters), lighting, shader_dir);
     // Light markers: a cube per point light, a cone per spot and directional light.
@@ -74,8 +76,16 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},   // lights (Gouraud reads them in the vertex shader)
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both}};  // materials
     for (const lab::DescriptorBinding& b : ShadowMaps::bindings()) bindings.push_back(b);  // lab 4: 3..9
+    if (translucent) {  // lab 4: 10..13, the translucent layers' lists (translucent_layers.glsl)
+        if (bindings.size() != TranslucentLayers::kFirstBinding)
+            throw std::logic_error("set 0: the translucent layers' bindings must follow the shadow maps' at " +
+                                   std::to_string(TranslucentLayers::kFirstBinding));
+        for (const lab::DescriptorBinding& b : TranslucentLayers::bindings()) bindings.push_back(b);
+    }
     set_layout_ = lab::make_descriptor_set_layout(vk, bindings);
     pool_ = lab::make_descriptor_pool(vk, bindings, lab::RenderTarget::kFramesInFlight);
+    if (translucent)
+        layers_ = std::make_unique<TranslucentLayers>(vk, target.extent(), target.render_pass(), set_layout_, shader_dir);
     const VkDeviceSize material_bytes = kMaxMaterials * sizeof(GpuMaterial);
     for (uint32_t slot = 0; slot < lab::RenderTarget::kFramesInFlight; ++slot) {
         uniforms_.push_back(lab::Buffer::host_visible(vk, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
@@ -90,6 +100,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
                                      material_bytes);
         shadows_.push_back(lab::Buffer::host_visible(vk, sizeof(GpuShadows), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
         shadow_maps_->write_descriptors(sets_.back(), shadows_.back().get());
+        if (layers_) layers_->write_descriptors(sets_.back(), slot);
     }
 
     vertex_shader_ = lab::load_shader(vk, shader_dir, "unlit.vert");
@@ -103,6 +114,10 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lit_vertex_shader_ = lab::load_shader(vk, shader_dir, "lit.vert");
     lit_fragment_shader_ = lab::load_shader(vk, shader_dir, "lit.frag");
     textured_fragment_shader_ = lab::load_shader(vk, shader_dir, "textured.frag");
+    if (layers_) {  // lab 4: lit.frag and textured.frag that store layers instead of writing colour
+        layer_fragment_shader_ = lab::load_shader(vk, shader_dir, "lit_layer.frag");
+        textured_layer_fragment_shader_ = lab::load_shader(vk, shader_dir, "textured_layer.frag");
+    }
     load_textures(lighting);
     lit_pipeline(variant_of(lighting));  // the scene's own variant, built up front
 }
@@ -176,6 +191,18 @@ void Renderer::draw_shadow_maps(const lab::Frame& frame, const Lighting& lightin
     shadow_maps_->record(frame.cmd, lighting, static_cast<GpuShadows*>(shadows_[frame.slot].mapped()), frame.timer);
 }
 
+void Renderer::clear_translucent_layers(const lab::Frame& frame) {
+    if (!layers_) return;  // no translucent object: no lists
+    if (frame.extent.width != layers_->extent().width || frame.extent.height != layers_->extent().height) {
+        // A resized window: one list per pixel of the new size. The frame still in flight reads
+        // the old lists, and every set points at them.
+        VK_CHECK(vkDeviceWaitIdle(vk_.device()));
+        layers_->resize(frame.extent);
+        for (uint32_t slot = 0; slot < lab::RenderTarget::kFramesInFlight; ++slot) layers_->write_descriptors(sets_[slot], slot);
+    }
+    layers_->clear(frame.cmd, frame.slot);
+}
+
 void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,
                     const glm::vec3& camera_position, const Lighting& lighting) {
     const FrameUniforms uniforms{view, projection, glm::vec4(camera_position, 1.0f), lighting.ambient_radiance()};
@@ -188,21 +215,19 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     if (lighting.lights.empty()) {
         draw_ambient_only(cmd, frame.slot, lighting);  // objects without maps
     }
-    // Lab 4: opaque objects first; translucent ones (opacity < 1) over them, farthest first, each
-    // with its far faces before its near ones, so every surface blends over what is behind it. The
-    // far faces are the back faces, unless a mirroring transform turned the winding inside out.
+    // Lab 4: opaque objects first; then the translucent ones (opacity < 1), in any order: every
+    // fragment of either face in front of the opaque picture goes into its pixel's list, and the
+    // lists, each sorted by depth, are composed over the opaque picture (translucent_layers.h).
     opaque_.clear();
     translucent_.clear();
     for (const DrawItem& item : items_)
-        (lighting.materials[item.lit.material].opacity < 1.0f ? translucent_ : opaque_).push_back(&item);
+        (layers_ && lighting.materials[item.lit.material].opacity < 1.0f ? translucent_ : opaque_).push_back(&item);
     draw_lit(cmd, frame.slot, lighting, lighting.lights.empty() ? Objects::TexturedOnly : Objects::All, opaque_,
              Pass::Opaque);
-    std::sort(translucent_.begin(), translucent_.end(), [&](const DrawItem* a, const DrawItem* b) {
-        return glm::distance(a->centre, camera_position) > glm::distance(b->centre, camera_position);
-    });
-    for (const DrawItem* item : translucent_) {
-        const Pass far = item->mirrored ? Pass::FrontFaces : Pass::BackFaces, near = item->mirrored ? Pass::BackFaces : Pass::FrontFaces;
-        for (Pass pass : {far, near}) draw_lit(cmd, frame.slot, lighting, Objects::All, {item}, pass);
+    if (!translucent_.empty()) {
+        draw_lit(cmd, frame.slot, lighting, Objects::All, translucent_, Pass::Layers);
+        const VkRect2D area = translucent_area(view, projection, frame.extent);
+        if (area.extent.width > 0 && area.extent.height > 0) layers_->resolve(cmd, sets_[frame.slot], area);
     }
     if (lighting.options.markers) draw_markers(cmd, frame.slot, lighting);
     if (lighting.shadow_view >= 0 && lighting.shadow_view < int(lighting.lights.size()))  // lab 4: the shadow-map view
@@ -263,8 +288,12 @@ const lab::PipelineBuilder::Result& Renderer::lit_pipeline(const Variant& varian
         .push_constants(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, sizeof(LitConstants))
         .specialization(&specialization);
     if (maps) builder.descriptor_set(texture_layout_);  // set 1: the maps
-    if (pass != Pass::Opaque)  // lab 4: blended over what is behind (α, 1 − α); depth tested, not written
-        builder.cull(pass == Pass::BackFaces ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT).alpha_blend(true).depth(true, false);
+    if (pass == Pass::Layers) {  // lab 4: both faces into the lists; depth tested, nothing written to the attachments
+        builder.shaders(lit_vertex_shader_, maps ? textured_layer_fragment_shader_ : layer_fragment_shader_)
+            .cull(VK_CULL_MODE_NONE)
+            .depth(true, false)
+            .color_blend(VkPipelineColorBlendAttachmentState{});  // colour write mask 0: the layers are stored, not drawn
+    }
     return lit_pipelines_[{variant, pass}] = builder.build(vk_, render_pass_);
 }
 
@@ -302,6 +331,7 @@ void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Light
     const lab::GpuMesh* bound = nullptr;
     for (const DrawItem& item : items_) {
         if (material_sets_[item.lit.material]) continue;  // lab 3: textured objects are drawn lit
+        if (layers_ && lighting.materials[item.lit.material].opacity < 1.0f) continue;  // lab 4: into the layers
         if (item.mesh != bound) {
             lab::bind_mesh(cmd, *item.mesh);
             bound = item.mesh;
@@ -312,4 +342,29 @@ void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Light
                            sizeof(ObjectConstants), &constants);
         vkCmdDrawIndexed(cmd, item.mesh->index_count, 1, 0, 0, 0);
     }
+}
+
+// The rectangle of pixels the translucent objects' world boxes cover: each box's eight corners
+// projected, in double. A corner in front of the near plane (or behind the eye) has no useful
+// projection: then the whole frame. One pixel more on every side for rounding.
+VkRect2D Renderer::translucent_area(const glm::mat4& view, const glm::mat4& projection, VkExtent2D extent) const {
+    const VkRect2D whole{{0, 0}, extent};
+    const glm::dmat4 to_clip = glm::dmat4(projection) * glm::dmat4(view);
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const DrawItem* item : translucent_) {
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p(corner & 1 ? item->box.hi.x : item->box.lo.x, corner & 2 ? item->box.hi.y : item->box.lo.y,
+                               corner & 4 ? item->box.hi.z : item->box.lo.z);
+            const glm::dvec4 clip = to_clip * glm::dvec4(p, 1.0);
+            if (clip.z < 0.0 || clip.w <= 0.0) return whole;  // depth 0 is the near plane
+            const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+            lo = glm::min(lo, ndc);
+            hi = glm::max(hi, ndc);
+        }
+    }
+    const glm::dvec2 size(extent.width, extent.height);
+    const glm::dvec2 first = glm::clamp(glm::floor((lo * 0.5 + 0.5) * size) - 1.0, glm::dvec2(0.0), size);
+    const glm::dvec2 last = glm::clamp(glm::ceil((hi * 0.5 + 0.5) * size) + 1.0, glm::dvec2(0.0), size);
+    if (last.x <= first.x || last.y <= first.y) return {{0, 0}, {0, 0}};  // all off screen
+    return {{int32_t(first.x), int32_t(first.y)}, {uint32_t(last.x - first.x), uint32_t(last.y - first.y)}};
 }

@@ -1,7 +1,8 @@
 // renderer.h — draws the scene's objects, lit: ambient, directional, point and spot lights
 // with the lighting and shading model the scene (or the UI) picks; optional light markers.
 // Lab 3: materials with texture maps (albedo, specular, emissive), each image uploaded once.
-// Lab 4: shadow maps (shadow_maps.h) rendered first; translucent objects drawn last, back to front.
+// Lab 4: shadow maps (shadow_maps.h) rendered first; translucent objects drawn last, their layers
+// sorted and composed per pixel (translucent_layers.h).
 #pragma once
 
 #include "buffer.h"
@@ -13,6 +14,7 @@
 #include "shadow_maps.h"
 #include "sampler_cache.h"
 #include "texture.h"
+#include "translucent_layers.h"
 
 #include <glm/glm.hpp>
 
@@ -32,6 +34,12 @@ public:
     // False when the lights casting shadows (or their resolutions) changed: rebuild the renderer.
     bool shadows_match(const Lighting& lighting) const { return shadow_maps_->matches(lighting); }
     int shadow_map_renders() const { return shadow_maps_->renders(); }
+    // Lab 4: before the target's render pass too: empties the translucent layers' lists (nothing
+    // without translucent objects); a new frame size gets new lists first.
+    void clear_translucent_layers(const lab::Frame& frame);
+    // The per-pixel lists of translucent layers and what they could not hold; null: no translucent object.
+    TranslucentLayers* translucent_layers() { return layers_.get(); }
+    const TranslucentLayers* translucent_layers() const { return layers_.get(); }
     // Records the draw commands for one frame (inside the target's render pass).
     void draw(const lab::Frame& frame, const glm::mat4& view, const glm::mat4& projection,
               const glm::vec3& camera_position, const Lighting& lighting);
@@ -64,11 +72,10 @@ private:
         const lab::GpuMesh* mesh;
         ObjectConstants constants;
         LitConstants lit{};
-        glm::vec3 centre{0.0f};  // lab 4: of its bounding box, to sort translucent objects
-        bool mirrored = false;   // lab 4: a negative determinant: its far faces wind counter-clockwise
+        Box box;  // lab 4: world-space bounds, where on screen a translucent object may be
     };
-    // Lab 4: opaque objects first, then each translucent one twice: its back faces, its front faces.
-    enum class Pass { Opaque, BackFaces, FrontFaces };
+    // Lab 4: opaque objects first, then the translucent ones' layers (both faces, into the lists).
+    enum class Pass { Opaque, Layers };
 
     enum class Objects { All, TexturedOnly };  // TexturedOnly: the others were drawn ambient-only
     void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting, Objects objects,
@@ -79,6 +86,9 @@ private:
     // lab 1's unlit pipeline draws the light markers, and whole scenes without lights.
     void draw_markers(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
     void draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);
+    // Lab 4: the pixels the translucent objects' boxes cover (the whole frame if one reaches behind
+    // the near plane), where the layers are composed.
+    VkRect2D translucent_area(const glm::mat4& view, const glm::mat4& projection, VkExtent2D extent) const;
 
     const lab::VulkanContext& vk_;
     VkRenderPass render_pass_;
@@ -96,6 +106,8 @@ private:
     lab::Handle<VkShaderModule> lit_vertex_shader_;
     lab::Handle<VkShaderModule> lit_fragment_shader_;
     lab::Handle<VkShaderModule> textured_fragment_shader_;  // lab 3: lit.frag with the samplers
+    lab::Handle<VkShaderModule> layer_fragment_shader_;     // lab 4: lit.frag storing layers (translucent scenes)
+    lab::Handle<VkShaderModule> textured_layer_fragment_shader_;  // and with the samplers
     std::map<std::pair<Variant, Pass>, lab::PipelineBuilder::Result> lit_pipelines_;  // [specialization constants]
     // Lab 3: textures. Each map image loaded and uploaded once; per material with maps one
     // descriptor set (set 1), written once; materials without maps bind nothing.
@@ -113,4 +125,5 @@ private:
     std::vector<lab::Buffer> shadows_;  // [frame slot] GpuShadows
     std::vector<const DrawItem*> opaque_, translucent_;  // this frame's draw order
     DepthView shadow_view_;  // the shadow-map view (depth_view.h)
+    std::unique_ptr<TranslucentLayers> layers_;  // lab 4: only when some object is translucent
 };

@@ -27,7 +27,7 @@ float on_grid(double clamp) { return clamp > 0.0 ? float(std::exp2(std::floor(st
 bool translucent_material(const Lighting& lighting, uint32_t material) { return lighting.materials[material].opacity < 1.0f; }
 
 // What the images depend on: each shadow-casting light's index, type and resolution; whether
-// the casters are translucent (the last number).
+// the transmittance maps' layers (the last number).
 std::vector<int> layout_of(const Lighting& lighting) {
     std::vector<int> layout;
     const std::vector<int> slots = lighting.shadow_slots();
@@ -35,7 +35,7 @@ std::vector<int> layout_of(const Lighting& lighting) {
         if (slots[i] >= 0)
             layout.insert(layout.end(), {int(i), int(lighting.lights[i].type), uses_cube_map(lighting.lights[i]),
                                          lighting.lights[i].shadow.resolution});
-    layout.push_back(lighting.translucent_casters);
+    layout.push_back(lighting.translucent_layers);
     return layout;
 }
 }  // namespace
@@ -70,8 +70,7 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
                   .build(vk, depth_pass_);
     // The second lesson: transmittance maps beside the depth maps (translucent_shadows.cpp), with
     // as many layers as a ray can cross translucent faces.
-    translucent_layers_ = translucent_layers(lighting);
-    translucent_.emplace(vk, depth_format_, translucent_layers_, casters, vertex_shader, shader_dir);
+    translucent_.emplace(vk, depth_format_, uint32_t(lighting.translucent_layers), casters, vertex_shader, shader_dir);
 
     const std::vector<int> slots = lighting.shadow_slots();
     for (size_t i = 0; i < lighting.lights.size(); ++i) {
@@ -138,20 +137,7 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
     }
 }
 
-bool ShadowMaps::matches(const Lighting& lighting) const {
-    return layout_of(lighting) == layout_ && translucent_layers(lighting) == translucent_layers_;
-}
-
-// K, the transmittance maps' layers: the most translucent front faces (as a light sees them) a
-// ray can cross — one per convex caster, two per other (a torus: a ray may cross both its sides),
-// at most TranslucentShadows::kMaxLayers; 0 when no caster is translucent.
-uint32_t ShadowMaps::translucent_layers(const Lighting& lighting) const {
-    if (!lighting.translucent_casters) return 0;
-    uint32_t faces = 0;
-    for (const Caster& c : objects_)
-        if (c.casts && translucent_material(lighting, c.material)) faces += c.convex ? 1 : 2;
-    return std::clamp(faces, 1u, TranslucentShadows::kMaxLayers);
-}
+bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }
 
 void ShadowMaps::draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
@@ -275,7 +261,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
     // and their boxes, whose covered_texels() on each face are all its transmittance pass draws.
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
-                                    float(translucent_->layers()), 0.0f, 0.0f);
+                                    0.0f, 0.0f, 0.0f);
     std::vector<Box> translucent;
     for (size_t i = 0; i < objects_.size(); ++i)
         if (in_map[i] && translucent_material(lighting, objects_[i].material)) translucent.push_back(objects_[i].box);

@@ -27,7 +27,7 @@ struct GpuShadow {
     glm::mat4 view_projection;  // (world − origin) → the map's clip space (2D maps)
     glm::vec4 origin;           // xyz: the light (spot, cube), the fitted box's centre (directional)
     glm::vec4 params;           // x: normal offset (world; perspective: per unit distance), y, z: a perspective map's depth constants (shadows.glsl)
-    glm::vec4 translucent;      // x: the translucent tolerance in depth (perspective: times 1 / distance), y: layers K
+    glm::vec4 translucent;      // x: the translucent tolerance in depth (perspective: times 1 / distance)
 };
 using GpuShadows = std::array<GpuShadow, kMaxShadowLights>;  // [slot]
 
@@ -79,7 +79,6 @@ private:
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting, bool translucent,
                       const std::vector<bool>& in_map, const lab::ShadowDesc* bias, const std::vector<float>& most_bias,
                       uint32_t layer = 0) const;
-    uint32_t translucent_layers(const Lighting& lighting) const;
     uint32_t clamp_resolution(int requested, bool cube) const;
     std::vector<bool> casters_for(const lab::LightDesc& light, const Lighting& lighting) const;
 
@@ -90,7 +89,6 @@ private:
     lab::Handle<VkRenderPass> depth_pass_;        // depth only
     lab::PipelineBuilder::Result opaque_;                    // depth only, depth bias
     std::optional<TranslucentShadows> translucent_;  // its pass; pipelines when some caster is translucent
-    uint32_t translucent_layers_ = 0;                // K, its layers (0: no translucent caster)
     lab::Handle<VkSampler> nearest_sampler_, compare_sampler_;
     std::vector<Map> maps_;          // one per shadow slot, in slot order
     Map stand_in_2d_, stand_in_cube_;  // 1×1, cleared: what unused slots' descriptors point at

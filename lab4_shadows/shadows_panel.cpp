@@ -13,12 +13,13 @@ const char* const kFilters[] = {"nearest (manual compare)", "bilinear (compariso
 const int kResolutions[] = {1, 64, 128, 256, 512, 1024, 2048, 4096, 8192};
 }  // namespace
 
-void shadows_panel(Lighting& l, float frame_ms, int renders) {
+void shadows_panel(Lighting& l, float frame_ms, int renders, const std::string& translucent_layers) {
     ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 390.0f, ImGui::GetIO().DisplaySize.y - 330.0f),
                             ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Shadows");
     ImGui::Text("%.2f ms/frame, %d shadow map renders so far", frame_ms, renders);
+    if (!translucent_layers.empty()) ImGui::TextWrapped("%s", translucent_layers.c_str());
     ImGui::Checkbox("animate lights", &l.animate_lights);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every light circles the Y axis: its map is rendered every frame");
     // The shadow-map view: one light's map (a point light's six faces) in the bottom right.

@@ -1,10 +1,14 @@
 // shadows_panel.h — lab 4's "Shadows" window (UI only): per light, casting shadows on / off and
 // its map's settings (resolution, PCF kernel, filter, biases) with the frame time beside them;
-// the shadow-map view; "animate lights". A new resolution, or a change in which lights cast
-// shadows, needs new images: main sees it (Renderer::shadows_match) and rebuilds the renderer.
+// the shadow-map view; "animate lights"; in translucent scenes, what the translucent layers'
+// lists could not hold (`translucent_layers`: TranslucentLayers::summary(); empty: no line). A new
+// resolution, or a change in which lights cast shadows, needs new images: main sees it
+// (Renderer::shadows_match) and rebuilds the renderer.
 // A reload of the scene file replaces these edits.
 #pragma once
 
 #include "lights.h"
 
-void shadows_panel(Lighting& lighting, float frame_ms, int renders);
+#include <string>
+
+void shadows_panel(Lighting& lighting, float frame_ms, int renders, const std::string& translucent_layers);

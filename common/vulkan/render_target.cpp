@@ -31,7 +31,7 @@ Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_fo
 
     // The previous frame's writes (colour, depth, a copy into the colour image) and its readback
     // copy's reads must finish before this frame clears the same attachments.
-    VkSubpassDependency dependencies[2] = {};
+    VkSubpassDependency dependencies[4] = {};
     VkSubpassDependency& dependency = dependencies[0];
     dependency.srcSubpass = VK_SUBPASS_EXTERNAL;
     dependency.dstSubpass = 0;
@@ -51,18 +51,40 @@ Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_fo
     dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
     dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
 
-    return create_render_pass(vk, 2, attachments, subpass, dependencies);
+    // Lab 4's translucent layers: fragment shaders write per-pixel lists that a later draw in the
+    // same pass reads. A barrier inside a render pass is allowed only where the pass declares a
+    // dependency of its subpass on itself that covers it: this one (by region: each pixel reads
+    // what its own fragments wrote).
+    VkSubpassDependency& self = dependencies[2];
+    self.srcSubpass = 0;
+    self.dstSubpass = 0;
+    self.srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    self.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    self.dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    self.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    self.dependencyFlags = VK_DEPENDENCY_BY_REGION_BIT;
+
+    // ...and the counts those shaders write into host-visible memory are read by the host after
+    // the frame's fence, which alone does not make device writes visible to the host.
+    dependencies[3].srcSubpass = 0;
+    dependencies[3].dstSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[3].srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    dependencies[3].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    dependencies[3].dstStageMask = VK_PIPELINE_STAGE_HOST_BIT;
+    dependencies[3].dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+
+    return create_render_pass(vk, 2, attachments, subpass, 4, dependencies);
 }
 
 Handle<VkRenderPass> create_render_pass(const VulkanContext& vk, uint32_t attachment_count,
                                         const VkAttachmentDescription* attachments, const VkSubpassDescription& subpass,
-                                        const VkSubpassDependency (&dependencies)[2]) {
+                                        uint32_t dependency_count, const VkSubpassDependency* dependencies) {
     VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
     info.attachmentCount = attachment_count;
     info.pAttachments = attachments;
     info.subpassCount = 1;
     info.pSubpasses = &subpass;
-    info.dependencyCount = 2;
+    info.dependencyCount = dependency_count;
     info.pDependencies = dependencies;
     VkRenderPass pass;
     VK_CHECK(vkCreateRenderPass(vk.device(), &info, nullptr, &pass));

@@ -55,10 +55,17 @@ public:
 Handle<VkRenderPass> make_render_pass(const VulkanContext& vk, VkFormat color_format, VkImageLayout color_final_layout);
 
 // A render pass of one subpass with its two external dependencies (before and after), owned by
-// a Handle: what every pass here (frame, UI overlay, shadow maps) is made of.
+// a Handle: what every pass here (frame, UI overlay, shadow maps) is made of. The frame's pass
+// has two more (make_render_pass): the overload below takes any number.
 Handle<VkRenderPass> create_render_pass(const VulkanContext& vk, uint32_t attachment_count,
                                         const VkAttachmentDescription* attachments, const VkSubpassDescription& subpass,
-                                        const VkSubpassDependency (&dependencies)[2]);
+                                        uint32_t dependency_count, const VkSubpassDependency* dependencies);
+inline Handle<VkRenderPass> create_render_pass(const VulkanContext& vk, uint32_t attachment_count,
+                                               const VkAttachmentDescription* attachments,
+                                               const VkSubpassDescription& subpass,
+                                               const VkSubpassDependency (&dependencies)[2]) {
+    return create_render_pass(vk, attachment_count, attachments, subpass, 2, dependencies);
+}
 
 // A framebuffer for `pass` over `views` (in the pass's attachment order): a target's colour and
 // depth, the UI overlay's colour.

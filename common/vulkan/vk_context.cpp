@@ -258,6 +258,7 @@ void VulkanContext::create_device() {
     enabled_features_.wideLines = supported.wideLines;
     enabled_features_.depthClamp = supported.depthClamp;  // lab 4: casters in front of a shadow map's near plane
     enabled_features_.depthBiasClamp = supported.depthBiasClamp;  // lab 4: a shadow map's depth bias bounded
+    enabled_features_.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;  // lab 4: translucent layers' lists
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -3,6 +3,13 @@
 // Lab 3: the lighting equation per pixel (flat and Phong shading) with the material's texture
 // maps, or the interpolated vertex color (Gouraud: untextured). See docs/lighting.md.
 #extension GL_GOOGLE_include_directive : require
+// Lab 4: built twice more for translucent objects: with TRANSLUCENT_LAYER (lit_layer.frag.spv) and
+// with TEXTURED_LAYER (textured_layer.frag.spv: both), each fragment stored in its pixel's list of
+// layers instead of written (translucent_layers.glsl; the resolve composes them in depth order).
+#ifdef TEXTURED_LAYER
+#define TEXTURED
+#define TRANSLUCENT_LAYER
+#endif
 #include "lighting.glsl"
 
 layout(location = 0) in vec3 in_world_position;
@@ -12,7 +19,15 @@ layout(location = 3) in vec3 in_gouraud_color;
 layout(location = 4) in float in_bad;
 layout(location = 5) in vec2 in_uv;
 
+#ifdef TRANSLUCENT_LAYER
+#include "translucent_layers.glsl"
+// The depth test before the shader, not after it: a fragment behind the opaque surface must not
+// run at all, or it would store a layer no one sees (a shader that writes memory is otherwise
+// tested late, after its writes).
+layout(early_fragment_tests) in;
+#else
 layout(location = 0) out vec4 out_color;
+#endif
 
 // Lab 3: the material's maps (set 1), in the module built with TEXTURED (textured.frag.spv) for
 // materials that have maps; lit.frag.spv declares no samplers. The sampler decodes sRGB to
@@ -121,5 +136,21 @@ void main() {
         check(color);
         if (lab_bad) color = vec3(1.0, 0.0, 1.0);
     }
+#ifdef TRANSLUCENT_LAYER
+    // Take the pool's next node; past its end the fragment is counted and lost (nothing else to do).
+    const uint node = atomicAdd(taken, 1u);
+    if (node >= uint(nodes.length())) {
+        atomicAdd(layer_stats.dropped, 1u);
+        return;
+    }
+    color = clamp(color, vec3(0.0), vec3(65504.0));  // the largest half: an overflowing colour stays bright
+    nodes[node].color_rg = packHalf2x16(color.rg);
+    nodes[node].color_ba = packHalf2x16(vec2(color.b, alpha));
+    nodes[node].depth = gl_FragCoord.z;
+    // Push it onto the pixel's list: the old head becomes its next. One atomic exchange, so two
+    // fragments of the same pixel (two objects, two faces) never lose each other.
+    nodes[node].next = atomicExchange(heads[layer_pixel()], node);
+#else
     out_color = vec4(color, alpha);
+#endif
 }

@@ -8,13 +8,14 @@
 // a scene without shadow-casting lights has none at all (SHADOWS is false). Slot i's constants:
 // SHADOW_KIND_i 0 no map, 1 2D (directional, spot), 2 cube (point); SHADOW_PCF_i N: an N×N kernel
 // of taps; SHADOW_FILTER_i 0 nearest: manual compare, 1 bilinear: comparison sampler;
-// SHADOW_TRANSLUCENT_i: a transmittance map beside the depth map; SHADOW_LIGHT_i: whose map it is,
+// SHADOW_TRANSLUCENT_i: the layers K of the transmittance map beside the depth map (0: none; a
+// constant, so the lookup's loop over them is unrolled); SHADOW_LIGHT_i: whose map it is,
 // LIGHT_ID of the light (−1: nobody's).
 #define SHADOW_CONSTANTS(i, id)                                   \
     layout(constant_id = id) const int SHADOW_KIND_##i = 0;       \
     layout(constant_id = id + 1) const int SHADOW_PCF_##i = 1;    \
     layout(constant_id = id + 2) const int SHADOW_FILTER_##i = 0; \
-    layout(constant_id = id + 3) const bool SHADOW_TRANSLUCENT_##i = false; \
+    layout(constant_id = id + 3) const int SHADOW_TRANSLUCENT_##i = 0;      \
     layout(constant_id = id + 4) const int SHADOW_LIGHT_##i = -1;
 SHADOW_CONSTANTS(0, 14) SHADOW_CONSTANTS(1, 19) SHADOW_CONSTANTS(2, 24) SHADOW_CONSTANTS(3, 29)
 const bool SHADOWS = SHADOW_KIND_0 != 0 || SHADOW_KIND_1 != 0 || SHADOW_KIND_2 != 0 || SHADOW_KIND_3 != 0;
@@ -41,8 +42,7 @@ struct ShadowSlot {
                            // and shadow_maps.cpp, where they are computed); z > 0 also marks a
                            // perspective 2D map (spot)
     vec4 translucent;      // x: how far (in depth) a receiver must lie behind a translucent caster to
-                           // be behind it; perspective maps: divided by P's distance along the axis;
-                           // y: the transmittance map's layers per face, K
+                           // be behind it; perspective maps: divided by P's distance along the axis
 };
 layout(std140, set = 0, binding = 3) uniform Shadows { ShadowSlot shadow_slots[4]; };
 // The same depth maps twice: read as numbers (nearest) and through a comparison sampler
@@ -67,7 +67,7 @@ float pcf_share(vec4 c, int bx, int by, int pcf, vec2 f) {
 
 // Directional and spot lights: P projected into the map; PCF averages N×N taps one texel apart.
 float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray translucent_map, int pcf, int filter_mode,
-                bool translucent, ShadowSlot s, vec3 P, vec3 N) {
+                int layers, ShadowSlot s, vec3 P, vec3 N) {
     // Normal offset: look the map up a little off the surface (in texels), so a surface does not
     // shadow itself where the map's texel stands at an angle to it (acne).
     const bool perspective = s.params.z > 0.0;
@@ -90,7 +90,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray
     const float ref = clamp(ndc.z, 0.0, 1.0);
     const float tolerance = s.translucent.x * inv_w;  // translucent casters, see above
     // Translucent casters: the light their layers let through to P (once, not per tap).
-    const float through = translucent_light(translucent, translucent_map, vec3(lookup, 0.0), s, ref, tolerance);
+    const float through = translucent_light(layers, translucent_map, vec3(lookup, 0.0), ref, tolerance);
     // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
     // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
     // around it and weights the results like a linear filter (what a comparison sampler does with
@@ -154,7 +154,7 @@ vec3 cube_face_uv(vec3 d) {
 // there — less than a texel of blur, and no crack, as every texel is compared with P's depth in
 // its own face. (Following the kernel into the neighbouring face costs 1.8× as much here.)
 float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sampler2DArray translucent_map, int pcf,
-                  int filter_mode, bool translucent, ShadowSlot s, vec3 P, vec3 N) {
+                  int filter_mode, int layers, ShadowSlot s, vec3 P, vec3 N) {
     vec3 v = P - s.origin.xyz;
     v += N * s.params.x * face_distance(v);  // normal offset, texels grow with distance
     const float z = face_distance(v);
@@ -165,8 +165,8 @@ float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sa
     const vec3 face = cube_face_uv(to_p);  // (s, t, layer)
     // Beyond the far plane (past the farthest caster): compared as 1, as in shadow_2d.
     const float ref = clamp(cube_depth_of(to_p, s), 0.0, 1.0);
-    const float tolerance = translucent ? s.translucent.x / z : 0.0;  // translucent casters, see above
-    const float through = translucent_light(translucent, translucent_map, face, s, ref, tolerance);
+    const float tolerance = layers > 0 ? s.translucent.x / z : 0.0;  // translucent casters, see above
+    const float through = translucent_light(layers, translucent_map, face, ref, tolerance);
     if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
         const float stored = texture(depth_map, face).r;
         return at_light ? 1.0 : (ref <= stored ? through : 0.0);

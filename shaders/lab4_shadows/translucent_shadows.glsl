@@ -29,9 +29,10 @@ float tap(float lit, bool translucent, vec2 transmittance, float ref, float tole
 // The light the translucent casters let through to P at depth `ref`: `at` = (s, t, face) in the
 // map, every layer of that face in turn. Only faces in front of P count — never P's own face,
 // never a face behind it — so a glass receiver under a glass caster gets the caster's 1 − α, and
-// the floor under both the product. Without translucent casters (a constant): 1, no lookup.
-float translucent_light(bool translucent, sampler2DArray map, vec3 at, ShadowSlot s, float ref, float tolerance) {
-    const int layers = translucent ? int(s.translucent.y) : 0;
+// the floor under both the product. `layers` (K) is a specialization constant: without
+// translucent casters (0) there is no lookup at all, and the loop is unrolled. (A bound read from
+// a uniform made lavapipe, Mesa 22.3, grow by megabytes every frame.)
+float translucent_light(int layers, sampler2DArray map, vec3 at, float ref, float tolerance) {
     float lit = 1.0;
     for (int k = 0; k < layers; ++k)
         lit = tap(lit, true, texture(map, vec3(at.xy, at.z * float(layers) + float(k))).rg, ref, tolerance);
