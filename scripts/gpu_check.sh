@@ -6,7 +6,8 @@
 # check.sh prints the device and its texture precision limits, renders every lab headless with
 # --validate, runs `--benchmark 300`, runs every GoogleTest program (the render tests against the
 # reference; the script tests need Python, CMake, Xvfb, which the GPU machine lacks), lab 4's
-# random-scene regressions, then its random scenes 7300..7699 (CTest runs 0..299). Logs and failing
+# random-scene regressions, then its random scenes 7300..7699 (CTest runs 0..299) and the
+# translucent stacks 0..399. Logs and failing
 # tests' diff images come back under $OUT.
 set -euo pipefail
 # -h / --help: the comment at the top of this file, nothing run.
@@ -30,10 +31,11 @@ vi=/opt/labgpu/bin/vulkaninfo
 for lab in \$(ls -d $build/lab*_*/); do n=\$(basename "\$lab")
   "\$lab/\$n" --headless --validate --out \$OUT/\$n.png 2>&1 | tail -1; "\$lab/\$n" --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) '
 done | tee \$OUT/labs.txt
-# Lab 4 with its maps re-rendered every frame (issue: ≤ 1 ms on an H200), default scene and swlike,
-# two rounds each, with the GPU time of every pass.
-for r in 1 2; do for v in animated swlike; do
+# Lab 4 with its maps re-rendered every frame (issue: ≤ 1 ms on an H200): the default scene, swlike
+# and the gallery's translucent layers, two rounds each, with the GPU time of every pass.
+for r in 1 2; do for v in animated swlike layers; do
   a=(--dev-animate-lights); [ \$v = swlike ] && a+=(--scene $root/scenes/bench/swlike_shadows.json)
+  [ \$v = layers ] && a+=(--scene $root/docs/images/lab4_shadows/scenes/translucent_layers.json)
   echo "lab4 \$v round \$r: \$($build/lab4_shadows/lab4_shadows "\${a[@]}" --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) ' | tr '\\n' ' ')"
 done; done | tee \$OUT/lab4_animated.txt
 # The GoogleTest programs, run directly (CTest and the libraries it needs would not fit the 64 MiB
@@ -49,6 +51,12 @@ for p in 0 1 2 3 4 5 6 7; do
   LAB_TEST_OUTPUT=\$OUT/random $build/tests/lab4_random_scenes --first \$((7300 + 50 * p)) --count 50 > \$OUT/random_part\$p.log 2>&1 &
 done; wait
 grep -h -E '^(lab4_random_scenes:|FAIL seed)' \$OUT/random_part*.log | tee \$OUT/random_scenes.txt
+# The same for the translucent stacks (lab4_random_scenes --translucent-stacks), seeds 0..399.
+for p in 0 1 2 3 4 5 6 7; do
+  LAB_TEST_OUTPUT=\$OUT/stacks $build/tests/lab4_random_scenes --translucent-stacks --first \$((50 * p)) --count 50 > \$OUT/stacks_part\$p.log 2>&1 &
+done; wait
+grep -h -E '^(lab4_random_scenes:|FAIL seed)' \$OUT/stacks_part*.log | tee \$OUT/stacks_scenes.txt
+rm -f \$OUT/stacks/lab4_random/*.json
 rm -f \$OUT/random/lab4_random/*.json
 RUN
 chmod +x .gpu/check.sh
