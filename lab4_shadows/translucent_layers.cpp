@@ -20,7 +20,7 @@ struct GpuStats {  // LayerStats (std430)
 TranslucentLayers::TranslucentLayers(const lab::VulkanContext& vk, VkExtent2D extent, VkRenderPass render_pass,
                                      VkDescriptorSetLayout set_layout, const std::string& shader_dir)
     : vk_(vk) {
-    counter_ = make_buffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    counter_ = lab::Buffer::device_only(vk, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     // The stats are the host's to read, one buffer per frame in flight (as the renderer's uniforms):
     // a frame's counts are read when its slot comes round again, after its fence, never waiting.
     for (uint32_t slot = 0; slot < lab::RenderTarget::kFramesInFlight; ++slot) {
@@ -58,23 +58,6 @@ TranslucentLayers::TranslucentLayers(const lab::VulkanContext& vk, VkExtent2D ex
                    .build(vk, render_pass);
 }
 
-TranslucentLayers::DeviceBuffer TranslucentLayers::make_buffer(VkDeviceSize size, VkBufferUsageFlags usage) const {
-    VkDevice device = vk_.device();
-    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    info.size = size;
-    info.usage = usage;
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    VkBuffer buffer;
-    VK_CHECK(vkCreateBuffer(device, &info, nullptr, &buffer));
-    DeviceBuffer result;
-    result.buffer = lab::Handle<VkBuffer>(buffer, [device](VkBuffer b) { vkDestroyBuffer(device, b, nullptr); });
-    VkMemoryRequirements requirements;
-    vkGetBufferMemoryRequirements(device, buffer, &requirements);
-    result.memory = vk_.allocator().allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, /*image=*/false);
-    VK_CHECK(vkBindBufferMemory(device, buffer, result.memory.memory(), result.memory.offset()));
-    return result;
-}
-
 void TranslucentLayers::resize(VkExtent2D extent) {
     const VkDeviceSize pixels = VkDeviceSize(extent.width) * extent.height;
     const VkDeviceSize range = vk_.properties().limits.maxStorageBufferRange;  // the most one binding may see
@@ -88,10 +71,10 @@ void TranslucentLayers::resize(VkExtent2D extent) {
     // frame: 4 per pixel leaves room for much more, at 64 bytes per pixel (59 MB at 1280×720).
     // No larger than one binding may be.
     pool_nodes_ = uint32_t(std::min<VkDeviceSize>(kNodesPerPixel * pixels, range / kNodeBytes));
-    heads_.reset();  // the old ones first (the GPU is done with them): their memory is reused
-    nodes_.reset();
-    heads_ = make_buffer(pixels * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    nodes_ = make_buffer(pool_nodes_ * kNodeBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    heads_ = lab::Buffer();  // the old ones first (the GPU is done with them): their memory is reused
+    nodes_ = lab::Buffer();
+    heads_ = lab::Buffer::device_only(vk_, pixels * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    nodes_ = lab::Buffer::device_only(vk_, pool_nodes_ * kNodeBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
 std::vector<lab::DescriptorBinding> TranslucentLayers::bindings() {
@@ -100,11 +83,11 @@ std::vector<lab::DescriptorBinding> TranslucentLayers::bindings() {
 
 void TranslucentLayers::write_descriptors(VkDescriptorSet set, uint32_t slot) const {
     const VkDeviceSize pixels = VkDeviceSize(extent_.width) * extent_.height;
-    lab::write_buffer_descriptor(vk_, set, kFirstBinding + 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, heads_.buffer,
+    lab::write_buffer_descriptor(vk_, set, kFirstBinding + 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, heads_.get(),
                                  pixels * sizeof(uint32_t));
-    lab::write_buffer_descriptor(vk_, set, kFirstBinding + 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nodes_.buffer,
+    lab::write_buffer_descriptor(vk_, set, kFirstBinding + 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nodes_.get(),
                                  pool_nodes_ * kNodeBytes);
-    lab::write_buffer_descriptor(vk_, set, kFirstBinding + 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, counter_.buffer,
+    lab::write_buffer_descriptor(vk_, set, kFirstBinding + 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, counter_.get(),
                                  sizeof(uint32_t));
     lab::write_buffer_descriptor(vk_, set, kFirstBinding + 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                  stats_buffers_[slot].get(), sizeof(GpuStats));
@@ -135,8 +118,8 @@ void TranslucentLayers::clear(VkCommandBuffer cmd, uint32_t slot) {
                          nullptr, 0, nullptr);
     // Every list empty, no node taken. (The nodes themselves need no clearing: only the nodes a
     // list reaches are read, and each was written this frame.)
-    vkCmdFillBuffer(cmd, heads_.buffer, 0, VK_WHOLE_SIZE, kEmpty);
-    vkCmdFillBuffer(cmd, counter_.buffer, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, heads_.get(), 0, VK_WHOLE_SIZE, kEmpty);
+    vkCmdFillBuffer(cmd, counter_.get(), 0, VK_WHOLE_SIZE, 0);
     // The fills must land before the translucent draws' atomics read and write them.
     VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     after.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;

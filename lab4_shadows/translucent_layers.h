@@ -69,24 +69,14 @@ public:
     std::string summary() const;
 
 private:
-    // A device-local buffer no host ever touches (the shaders fill it).
-    struct DeviceBuffer {
-        lab::Allocation memory;  // destroyed after the buffer (members go in reverse order)
-        lab::Handle<VkBuffer> buffer;
-        void reset() {  // the same order when replaced: the buffer, then its memory
-            buffer.reset();
-            memory.reset();
-        }
-    };
-    DeviceBuffer make_buffer(VkDeviceSize size, VkBufferUsageFlags usage) const;
     void read_stats(uint32_t slot);
 
     const lab::VulkanContext& vk_;
     VkExtent2D extent_{};
     uint32_t pool_nodes_ = 0;
-    DeviceBuffer heads_;    // one uint per pixel: the first node of its list
-    DeviceBuffer nodes_;    // the pool: 16-byte nodes
-    DeviceBuffer counter_;  // one uint: nodes taken so far this frame
+    lab::Buffer heads_;    // one uint per pixel: the first node of its list (device-only, as the two below)
+    lab::Buffer nodes_;    // the pool: 16-byte nodes
+    lab::Buffer counter_;  // one uint: nodes taken so far this frame
     std::vector<lab::Buffer> stats_buffers_;  // [frame slot] host-visible: width, overflow_pixels, dropped
     std::vector<bool> pending_;               // [frame slot]: written by a frame not read back yet
     uint32_t last_slot_ = 0;                  // the slot of the last frame cleared

@@ -81,6 +81,27 @@ private:
     std::mt19937_64 g_;
 };
 
+// " at D from the group" (and ", outer A deg" for a spot): how a scene's light is described.
+std::string light_place(double distance, bool spot, double outer) {
+    char text[96];
+    std::snprintf(text, sizeof text, " at %.3g from the group", distance);
+    std::string place = text;
+    if (spot) {
+        std::snprintf(text, sizeof text, ", outer %.1f deg", outer);
+        place += text;
+    }
+    return place;
+}
+
+// The scene's one light: it casts shadows at intensity 1.2, a quarter of them with 3×3 PCF (either
+// filter). Draws from `r` in the order the scenes were generated with (every seed keeps its scene).
+void add_light(Rng& r, json light, json& s) {
+    light["cast_shadows"] = true;
+    light["intensity"] = 1.2;
+    if (r.chance(0.25)) light["shadow"] = {{"pcf", 3}, {"filter", r.chance(0.5) ? "bilinear" : "nearest"}};
+    s["lights"] = json::array({light});
+}
+
 json vec(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
 struct Generated {
@@ -178,18 +199,9 @@ Generated generate(uint64_t seed) {
                      {"outer_deg", outer}, {"inner_deg", outer * r.uniform(0.3, 0.9)}};
             kind = far_spot ? "far spot" : "spot";
         }
-        char text[96];
-        std::snprintf(text, sizeof text, " at %.3g from the group", glm::length(p - middle));
-        kind += text;
-        if (type == 2) {
-            std::snprintf(text, sizeof text, ", outer %.1f deg", outer);
-            kind += text;
-        }
+        kind += light_place(glm::length(p - middle), type == 2, outer);
     }
-    light["cast_shadows"] = true;
-    light["intensity"] = 1.2;
-    if (r.chance(0.25)) light["shadow"] = {{"pcf", 3}, {"filter", r.chance(0.5) ? "bilinear" : "nearest"}};
-    s["lights"] = json::array({light});
+    add_light(r, light, s);
     // The camera: 4-8 caster sizes from the group, looking down at it.
     const glm::dvec3 eye = middle + r.direction(0.3, 0.85) * (g * r.uniform(4.0, 8.0));
     const double far = glm::length(eye - floor_at) + 3.0 * floor_half;
@@ -392,18 +404,9 @@ Generated generate_stacks(uint64_t seed) {
                      {"outer_deg", outer}, {"inner_deg", outer * r.uniform(0.3, 0.9)}};
             kind = far_spot ? "far spot" : "spot";
         }
-        char text[96];
-        std::snprintf(text, sizeof text, " at %.3g from the group", glm::length(p - middle));
-        kind += text;
-        if (type == 2) {
-            std::snprintf(text, sizeof text, ", outer %.1f deg", outer);
-            kind += text;
-        }
+        kind += light_place(glm::length(p - middle), type == 2, outer);
     }
-    light["cast_shadows"] = true;
-    light["intensity"] = 1.2;
-    if (r.chance(0.25)) light["shadow"] = {{"pcf", 3}, {"filter", r.chance(0.5) ? "bilinear" : "nearest"}};
-    s["lights"] = json::array({light});
+    add_light(r, light, s);
     // The camera: 1.2-2 times the group's reach (plus a caster size) from its middle, looking down at it.
     const glm::dvec3 eye = middle + r.direction(0.3, 0.85) * ((reach + g) * r.uniform(1.2, 2.0));
     const double far = glm::length(eye - floor_at) + 3.0 * floor_half;

@@ -48,6 +48,10 @@ Buffer Buffer::host_visible(const VulkanContext& vk, VkDeviceSize size, VkBuffer
     return Buffer(vk, size, usage, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
 }
 
+Buffer Buffer::device_only(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage) {
+    return Buffer(vk, size, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+
 Buffer Buffer::device_local(const VulkanContext& vk, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
     Buffer staging = host_visible(vk, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     std::memcpy(staging.mapped(), data, size);

@@ -21,6 +21,8 @@ public:
     Buffer& operator=(Buffer&& other) noexcept;
     // A host-visible, coherent, persistently mapped buffer.
     static Buffer host_visible(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage);
+    // A device-local buffer with undefined contents, for the device alone to fill (shaders, fills).
+    static Buffer device_only(const VulkanContext& vk, VkDeviceSize size, VkBufferUsageFlags usage);
     // A device-local buffer holding `data` (uploaded through a temporary staging buffer).
     static Buffer device_local(const VulkanContext& vk, const void* data, VkDeviceSize size,
                                VkBufferUsageFlags usage);
