@@ -591,16 +591,21 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
     // than trilinear where the map is magnified (one probe there: n = 1 when the footprint is under a texel).
     for (int r : {kProbes2, kProbes3, kProbes4, kProbes8, kProbes16})
         EXPECT_LT(rows[r].minified, rows[kTrilinear].minified) << rows[r].name << " should beat trilinear on the far floor";
-    // Which anisotropic filter is closer depends on the device; the lab names its device kind on
-    // its "auto" line ("anisotropic: auto -> probes (CPU device)"). On lavapipe (a CPU device) the
-    // probes 4 … 16 come within 0.25/255 of the sampler's anisotropy 16 on the far floor; on a GPU
-    // the texture unit's filter is the closer one (an NVIDIA H200: 1.16 against the probes' 1.51).
-    // Each is what "auto" picks there, so auto must read exactly like that row.
+    // Which anisotropic filter "auto" should pick depends on the device; the lab names its device
+    // kind on its "auto" line ("anisotropic: auto -> probes (CPU device)"). Each kind's pick must be
+    // within 0.25/255 of the other filter on the far floor, at a fraction of its cost there. On
+    // lavapipe (a CPU device: every texel read is paid, the sampler's anisotropy is one fixed slow
+    // filter) the probes 4 … 16 come within 0.25 of the sampler's anisotropy 16. On a GPU the
+    // texture unit filters anisotropically at the cost of about one lookup, n probes cost n: its
+    // anisotropy 16 must come within 0.25 of the probes 4 … 16 (an NVIDIA H200, 27 Nov 2026: 1.16
+    // against 1.51 / 1.13 / 1.05 for 4 / 8 / 16 probes). Auto must read exactly like its pick's row.
     const std::string auto_log = read_text(kLab.path("truth_" + std::to_string(kAuto16) + ".log"));
     const bool cpu_device = auto_log.find("anisotropic: auto -> probes (CPU device)") != std::string::npos;
     ASSERT_TRUE(cpu_device || auto_log.find("anisotropic: auto -> the sampler's anisotropy") != std::string::npos)
         << "the lab names no auto choice:\n" << auto_log;
-    if (devices().only_cpu) EXPECT_TRUE(cpu_device) << "every Vulkan device here is a CPU one:\n" << auto_log;
+    if (devices().only_cpu) {
+        EXPECT_TRUE(cpu_device) << "every Vulkan device here is a CPU one:\n" << auto_log;
+    }
     constexpr double kMargin = 0.25;
     if (cpu_device) {
         for (int r : {kProbes4, kProbes8, kProbes16})
@@ -608,7 +613,7 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
         EXPECT_EQ(rows[kAuto16].mean, rows[kProbes16].mean) << "auto should be the probes on a CPU device";
     } else {
         for (int r : {kProbes4, kProbes8, kProbes16})
-            EXPECT_LT(rows[kAniso16].minified, rows[r].minified) << "a GPU's anisotropy 16 vs " << rows[r].name << ", far floor";
+            EXPECT_LE(rows[kAniso16].minified, rows[r].minified + kMargin) << "a GPU's anisotropy 16 vs " << rows[r].name << ", far floor";
         EXPECT_EQ(rows[kAuto16].mean, rows[kAniso16].mean) << "auto should be the sampler's anisotropy on a GPU";
     }
     for (int r : {kProbes2, kProbes3, kProbes4, kProbes8, kProbes16})
