@@ -161,8 +161,9 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
     vkCmdSetScissor(cmd, 0, 1, &area);  // nothing drawn outside the render area
 }
 
-VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size) {
-    const VkRect2D whole{{0, 0}, {size, size}};
+VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, VkExtent2D extent) {
+    const VkRect2D whole{{0, 0}, extent};
+    const double w = extent.width, h = extent.height;
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
     for (const lab::Box& box : boxes) {
         int behind = 0;  // corners at or behind the light's plane (w ≤ 0)
@@ -173,18 +174,17 @@ VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::
                 ++behind;
                 continue;
             }
-            // The viewport maps x, y in [−1, 1] onto [0, size] (the box's projection holds its
-            // contents': projection keeps straight lines straight in front of the plane).
-            x0 = std::min(x0, (p.x / p.w + 1.0) * 0.5 * size), x1 = std::max(x1, (p.x / p.w + 1.0) * 0.5 * size);
-            y0 = std::min(y0, (p.y / p.w + 1.0) * 0.5 * size), y1 = std::max(y1, (p.y / p.w + 1.0) * 0.5 * size);
+            // The viewport maps x, y in [−1, 1] onto [0, width] and [0, height] (the box's projection
+            // holds its contents': projection keeps straight lines straight in front of the plane).
+            x0 = std::min(x0, (p.x / p.w + 1.0) * 0.5 * w), x1 = std::max(x1, (p.x / p.w + 1.0) * 0.5 * w);
+            y0 = std::min(y0, (p.y / p.w + 1.0) * 0.5 * h), y1 = std::max(y1, (p.y / p.w + 1.0) * 0.5 * h);
         }
         if (behind == 8) continue;  // wholly behind: clipped away (w > 0 holds with depth clamp too)
         if (behind > 0) return whole;  // across the plane: its projection has no bound
     }
     // One texel to spare on each side (the pass rasterizes in float from a float matrix).
-    const double s = size;
-    const double left = std::clamp(std::floor(x0) - 1.0, 0.0, s), right = std::clamp(std::ceil(x1) + 1.0, 0.0, s);
-    const double top = std::clamp(std::floor(y0) - 1.0, 0.0, s), bottom = std::clamp(std::ceil(y1) + 1.0, 0.0, s);
+    const double left = std::clamp(std::floor(x0) - 1.0, 0.0, w), right = std::clamp(std::ceil(x1) + 1.0, 0.0, w);
+    const double top = std::clamp(std::floor(y0) - 1.0, 0.0, h), bottom = std::clamp(std::ceil(y1) + 1.0, 0.0, h);
     if (!(right > left && bottom > top)) return VkRect2D{};  // nothing in front, or all off the map
     return {{int32_t(left), int32_t(top)}, {uint32_t(right - left), uint32_t(bottom - top)}};
 }

@@ -75,4 +75,8 @@ lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool lin
 // `world_to_clip`, with a texel to spare: the whole target when a box reaches behind the
 // projection's plane (w ≤ 0 at some corners), none when no box is in front of it or all lie off
 // the target. What a pass must draw or clear, or whether a caster can reach a cube face at all.
-VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size);
+// `extent`: a target of any shape (lab 4's camera pass asks it where its translucent objects are).
+VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, VkExtent2D extent);
+inline VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, uint32_t size) {
+    return covered_texels(world_to_clip, boxes, VkExtent2D{size, size});
+}

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <stdexcept>
 
 namespace {
@@ -344,27 +343,10 @@ void Renderer::draw_ambient_only(VkCommandBuffer cmd, uint32_t slot, const Light
     }
 }
 
-// The rectangle of pixels the translucent objects' world boxes cover: each box's eight corners
-// projected, in double. A corner in front of the near plane (or behind the eye) has no useful
-// projection: then the whole frame. One pixel more on every side for rounding.
+// The rectangle of pixels the translucent objects' world boxes can cover (covered_texels() in
+// offscreen.h, the same question the transmittance maps ask): where the resolve must run.
 VkRect2D Renderer::translucent_area(const glm::mat4& view, const glm::mat4& projection, VkExtent2D extent) const {
-    const VkRect2D whole{{0, 0}, extent};
-    const glm::dmat4 to_clip = glm::dmat4(projection) * glm::dmat4(view);
-    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    for (const DrawItem* item : translucent_) {
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::dvec3 p(corner & 1 ? item->box.hi.x : item->box.lo.x, corner & 2 ? item->box.hi.y : item->box.lo.y,
-                               corner & 4 ? item->box.hi.z : item->box.lo.z);
-            const glm::dvec4 clip = to_clip * glm::dvec4(p, 1.0);
-            if (clip.z < 0.0 || clip.w <= 0.0) return whole;  // depth 0 is the near plane
-            const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-            lo = glm::min(lo, ndc);
-            hi = glm::max(hi, ndc);
-        }
-    }
-    const glm::dvec2 size(extent.width, extent.height);
-    const glm::dvec2 first = glm::clamp(glm::floor((lo * 0.5 + 0.5) * size) - 1.0, glm::dvec2(0.0), size);
-    const glm::dvec2 last = glm::clamp(glm::ceil((hi * 0.5 + 0.5) * size) + 1.0, glm::dvec2(0.0), size);
-    if (last.x <= first.x || last.y <= first.y) return {{0, 0}, {0, 0}};  // all off screen
-    return {{int32_t(first.x), int32_t(first.y)}, {uint32_t(last.x - first.x), uint32_t(last.y - first.y)}};
+    std::vector<Box> boxes;
+    for (const DrawItem* item : translucent_) boxes.push_back(item->box);
+    return covered_texels(glm::dmat4(projection) * glm::dmat4(view), boxes, extent);
 }
