@@ -7,12 +7,13 @@
 // decoding, mip chain and ray-differential LOD). Anisotropy is off in every comparison (the
 // reference does not model it).
 //
-// Acceptance on interior pixels (away from silhouettes, and for nearest filtering away from
-// texel borders, where float and double may round to different texels), on any GPU:
+// Acceptance on interior pixels (away from silhouettes, and for nearest filtering away from the
+// map's texel borders, where float and double may round to different texels), on any GPU:
 //   * the envelope: the reference is also shaded with every lookup done the ways the Vulkan
-//     specification allows an implementation to differ (ref::SamplingVariant: bilinear weights
-//     kept to the device's subTexelPrecisionBits, texel coordinates moved by the rasteriser's vertex
-//     snapping to subPixelPrecisionBits, λ anywhere in the bounds the specification puts
+//     specification allows an implementation to differ (ref::SamplingVariant: texel coordinates
+//     kept to the device's subTexelPrecisionBits and moved by the rasteriser's vertex snapping to
+//     subPixelPrecisionBits, for nearest lookups too: a scaled or distorted lookup has texel
+//     borders the mask does not know of; λ anywhere in the bounds the specification puts
 //     on the approximated scale factor ρ); each pixel must lie within 2/255 of the interval those
 //     shadings span — every magnified pixel (reference λ ≤ 0), and at least 99 % of the minified
 //     ones (λ > 0: the GPU takes the LOD from differences across a 2×2 pixel quad, a finite
@@ -115,21 +116,22 @@ const DeviceFacts& devices() {
 }
 
 // Per pixel, the [lowest, highest] 8-bit sRGB value of each channel over the shadings with every
-// lookup done in one of the ways the specification allows (ref::SamplingVariant): the bilinear
-// weights' corners ±step, and λ at five points from its lowest to its highest bound (plus exact).
-// step = 2^-subTexelPrecisionBits (the weights' own rounding) + 2^-subPixelPrecisionBits (vertices
-// snapped to that fraction of a pixel move the interpolated coordinate by as much of a pixel's
-// footprint, which is at most one texel where the texture is magnified).
+// lookup done in one of the ways the specification allows (ref::SamplingVariant): its texel
+// coordinates moved to each corner of the box that the sub-texel rounding (2^-subTexelPrecisionBits
+// of a texel) and the vertex snapping (2^-subPixelPrecisionBits of a pixel, across the lookup's own
+// footprint) allow, for nearest lookups as for bilinear ones; and λ at five points from its lowest
+// to its highest bound (plus exact).
 struct Envelope {
     std::vector<glm::ivec3> low, high;
 };
 Envelope sampling_envelope(const lab::Scene& scene, const ref::RefImage& reference) {
-    const double step = std::ldexp(1.0, -devices().sub_texel_bits) + std::ldexp(1.0, -devices().sub_pixel_bits);
+    const double texel_step = std::ldexp(1.0, -devices().sub_texel_bits), pixel_step = std::ldexp(1.0, -devices().sub_pixel_bits);
     std::vector<ref::ShadeFn> shaders;
     for (const double t : {-1.0, 0.0, 0.25, 0.5, 0.75, 1.0})
-        for (const double su : {-step, step})
-            for (const double sv : {-step, step})
-                shaders.push_back(ref::make_texture_shader(scene, kWidth, kHeight, false, ref::SamplingVariant{{su, sv}, t}));
+        for (const double su : {-1.0, 1.0})
+            for (const double sv : {-1.0, 1.0})
+                shaders.push_back(ref::make_texture_shader(scene, kWidth, kHeight, false,
+                                                           ref::SamplingVariant{{su, sv}, texel_step, pixel_step, t}));
     Envelope e;
     e.low.assign(reference.hits.size(), glm::ivec3(255));
     e.high.assign(reference.hits.size(), glm::ivec3(0));

@@ -147,11 +147,11 @@ int wrap_texel(int i, int size, Wrap wrap) {
     return 0;
 }
 
-glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, Filter filter, Wrap wrap, glm::dvec2 weight_shift) {
+glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, Filter filter, Wrap wrap, glm::dvec2 texel_shift) {
     // Unnormalized texel coordinates; for huge |u| the repeat is taken first, in double, so
     // that the fraction keeps its precision (what a GPU does with float is documented in the lab).
     if (wrap == Wrap::Repeat) uv = glm::dvec2(fract(uv.x), fract(uv.y));
-    const double u = uv.x * level.width, v = uv.y * level.height;
+    const double u = uv.x * level.width + texel_shift.x, v = uv.y * level.height + texel_shift.y;
     if (filter == Filter::Nearest) {
         const int i = wrap_texel(int(std::floor(u)), level.width, wrap);
         const int j = wrap_texel(int(std::floor(v)), level.height, wrap);
@@ -159,7 +159,7 @@ glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, Filter filter,
     }
     const double u0 = u - 0.5, v0 = v - 0.5;
     const int i0 = int(std::floor(u0)), j0 = int(std::floor(v0));
-    const double a = std::clamp(u0 - i0 + weight_shift.x, 0.0, 1.0), b = std::clamp(v0 - j0 + weight_shift.y, 0.0, 1.0);
+    const double a = u0 - i0, b = v0 - j0;
     const int ia = wrap_texel(i0, level.width, wrap), ib = wrap_texel(i0 + 1, level.width, wrap);
     const int ja = wrap_texel(j0, level.height, wrap), jb = wrap_texel(j0 + 1, level.height, wrap);
     return (1 - a) * (1 - b) * level.at(ia, ja) + a * (1 - b) * level.at(ib, ja) + (1 - a) * b * level.at(ia, jb) +
@@ -189,17 +189,23 @@ glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::
         exact = glm::mix(range.x, range.y, variant.lod_between);
     }
     const double lambda = desc.mipmaps == Mipmaps::None ? std::min(exact, 0.0) : std::min(exact, double(q));
-    const glm::dvec2 w = variant.weight_shift;
-    if (lambda <= 0.0 || q == 0) return sample_level(texture.levels[0], uv, desc.filter, desc.wrap, w);
+    // The variant's texel coordinates at level d (SamplingVariant): the sub-texel rounding plus the
+    // vertex snapping's move across this lookup's footprint, both in level d's texels.
+    const auto shift = [&](int d) {
+        const glm::dvec2 size(texture.levels[size_t(d)].width, texture.levels[size_t(d)].height);
+        const glm::dvec2 footprint = (glm::abs(dx) + glm::abs(dy)) * size;  // texels per pixel, per axis
+        return variant.corner * (variant.texel_step + variant.pixel_step * glm::max(footprint, glm::dvec2(1.0)));
+    };
+    if (lambda <= 0.0 || q == 0) return sample_level(texture.levels[0], uv, desc.filter, desc.wrap, shift(0));
     if (desc.mipmaps == Mipmaps::Nearest) {
         const int d = std::clamp(int(std::ceil(lambda + 0.5)) - 1, 0, q);
-        return sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap, w);
+        return sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap, shift(d));
     }
     const int d = std::min(int(std::floor(lambda)), q);
     const double delta = lambda - d;
-    const glm::dvec4 hi = sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap, w);
+    const glm::dvec4 hi = sample_level(texture.levels[size_t(d)], uv, desc.filter, desc.wrap, shift(d));
     if (d >= q || delta == 0.0) return hi;
-    return (1.0 - delta) * hi + delta * sample_level(texture.levels[size_t(d + 1)], uv, desc.filter, desc.wrap, w);
+    return (1.0 - delta) * hi + delta * sample_level(texture.levels[size_t(d + 1)], uv, desc.filter, desc.wrap, shift(d + 1));
 }
 
 namespace {

@@ -52,21 +52,29 @@ int wrap_texel(int i, int size, lab::SamplerDesc::Wrap wrap);
 
 // What a conformant implementation may do differently from the exact lookup, for tests that must
 // hold on any GPU (the Vulkan specification, chapter "Image Operations"):
-//   * the bilinear weights α, β keep only VkPhysicalDeviceLimits::subTexelPrecisionBits fraction
-//     bits, so each may be off by up to 2^-bits: `weight_shift` is added to (α, β), clamped to [0, 1];
+//   * texel coordinates keep only VkPhysicalDeviceLimits::subTexelPrecisionBits fraction bits, so a
+//     bilinear weight, or the texel a nearest lookup picks, may be decided 2^-bits of a texel away;
+//   * the rasteriser snaps vertices to subPixelPrecisionBits, which moves the point a pixel's
+//     coordinates are interpolated at by up to 2^-bits of a pixel on each screen axis: in texels,
+//     2^-bits · (|∂u/∂x| + |∂u/∂y|) (u in texels; the lookup's own derivatives, so a scaled or
+//     distorted lookup moves as far as its footprint), taken as at least 2^-bits of a texel;
 //   * the scale factor ρ may be approximated by any f with, per screen axis,
 //         max(|∂u/∂x|, |∂v/∂x|) ≤ f_x ≤ √3·(|∂u/∂x| + |∂v/∂x|)   (u, v in texels)
 //     `lod_between` = t picks λ = (1 − t)·λ_low + t·λ_high inside that range; a negative value (the
 //     default) keeps the exact λ = log2(ρmax).
-// The default variant is the exact lookup.
+// `corner` (−1, 0 or 1 per texel axis) moves every lookup's texel coordinates to that corner of the
+// box the first two allow, at each mip level in that level's texels. The default is the exact lookup.
 struct SamplingVariant {
-    glm::dvec2 weight_shift{0.0};
+    glm::dvec2 corner{0.0};
+    double texel_step = 0.0;  // 2^-subTexelPrecisionBits
+    double pixel_step = 0.0;  // 2^-subPixelPrecisionBits
     double lod_between = -1.0;
 };
 
-// One filtered lookup at `level` (no mip selection): nearest or bilinear.
+// One filtered lookup at `level` (no mip selection): nearest or bilinear, at texel coordinates
+// moved by `texel_shift` (SamplingVariant; 0: the exact lookup).
 glm::dvec4 sample_level(const TextureLevel& level, glm::dvec2 uv, lab::SamplerDesc::Filter filter,
-                        lab::SamplerDesc::Wrap wrap, glm::dvec2 weight_shift = glm::dvec2(0.0));
+                        lab::SamplerDesc::Wrap wrap, glm::dvec2 texel_shift = glm::dvec2(0.0));
 
 // The LOD λ = log2(ρmax) of a lookup with UV derivatives dx, dy (per pixel) on `level0`.
 double lod(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy);
