@@ -18,7 +18,7 @@ void shadows_panel(Lighting& l, float frame_ms, int renders, const std::string& 
                             ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Shadows");
-    ImGui::Text("%.2f ms/frame, %d shadow map renders so far", frame_ms, renders);
+    ImGui::Text("%.2f ms/frame, %d shadow map%s drawn last frame", frame_ms, renders, renders == 1 ? "" : "s");
     if (!translucent_layers.empty()) ImGui::TextWrapped("%s", translucent_layers.c_str());
     ImGui::Checkbox("animate lights", &l.animate_lights);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every light circles the Y axis: its map is rendered every frame");

@@ -9,6 +9,7 @@ const std::vector<OptionSpec>& dev_option_specs() {
         {"dev-status-file", true}, {"dev-fail-after-submit", true}, {"dev-validation-probe", false},
         {"dev-no-blit", false},    {"dev-shader-dir", true},        {"dev-scene-dir", true},
         {"dev-animate-lights", false}, {"dev-shadow-view", true},   {"dev-mip-view", false},
+        {"dev-warmup-ms", true},
     };
     return specs;
 }
@@ -33,6 +34,8 @@ void set_dev_option(DevOptions& dev, const std::string& name, const std::string&
         dev.shadow_view = int(parse_whole_number(option, value, 0, 1000));
     } else if (name == "dev-mip-view") {
         dev.mip_view = true;
+    } else if (name == "dev-warmup-ms") {
+        dev.warmup_ms = int(parse_whole_number(option, value, 0, 600000));
     }
 }
 
@@ -55,6 +58,8 @@ std::string dev_usage(const std::string& program) {
            "  --dev-shadow-view N        lab 4: show light N's shadow map (headless pictures)\n"
            "  --dev-mip-view             labs 3 and 4: start with the mip-level view on (each\n"
            "                             textured pixel tinted by the mip level it reads)\n"
+           "  --dev-warmup-ms N          --benchmark: warm up for at least N ms (default 1000)\n"
+           "                             before timing: an idle GPU's clock needs time to rise\n"
            "  --help-dev                 show this help and exit\n";
 }
 

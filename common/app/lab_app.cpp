@@ -85,6 +85,7 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
     dev::InstrumentSettings instruments;
     instruments.lab = info.name;
     instruments.benchmark_frames = options.benchmark;
+    instruments.warmup_ms = options.dev.warmup_ms;
     instruments.window = window_ != nullptr;
     instruments.status_file = window_ ? options.dev.status_file : "";
     instruments.fail_after_submit = options.dev.fail_after_submit;
@@ -150,7 +151,6 @@ void LabApp::run_window(const Callbacks& lab_callbacks) {
     // --frames and --benchmark draw every frame and stop after a count. Otherwise the window
     // draws on demand (redraw_policy.h) and sleeps while nothing changes.
     const bool measured = options_.frames > 0 || dev_->benchmarking();
-    const int to_draw = dev_->benchmarking() ? dev_->benchmark_frames() : options_.frames;
     RenderTarget& target = dev_->measured(*target_);  // a window benchmark times the frame's phases
     Callbacks cb = lab_callbacks;
     cb.before_pass = dev_->measured(cb.before_pass);
@@ -193,7 +193,8 @@ void LabApp::run_window(const Callbacks& lab_callbacks) {
         if (drawn > 0) show_frame_time(woke);  // the first frame compiles the shaders: not a frame time
         dev_->frame_drawn(target, target.extent(), ui_->redraw_count());
         ++drawn;
-        if (measured && drawn >= to_draw) break;  // --frames N: screenshots, tests
+        if (dev_->benchmarking() ? !dev_->benchmark_wants_frame(drawn) : measured && drawn >= options_.frames)
+            break;  // --frames N: screenshots, tests; --benchmark N: its warm-up and N intervals
     }
     wait_idle();
     if (dev_->benchmarking() && dev_->report(target_->extent(), ui_->redraw_count())) return;
@@ -290,10 +291,10 @@ void LabApp::gpu_times_ui() {
 
 void LabApp::run_headless(const Callbacks& cb) {
     // Headless time advances at a fixed rate, so the output is deterministic.
-    const int frames = dev_->benchmarking() ? dev_->benchmark_frames() : std::max(1, options_.frames);
+    const int frames = std::max(1, options_.frames);
     dev::GpuPassTimer& gpu = dev_->gpu_passes();
     const auto start = Clock::now();
-    for (int i = 0; i < frames; ++i) {
+    for (int i = 0; dev_->benchmarking() ? dev_->benchmark_wants_frame(i) : i < frames; ++i) {
         cb.update(1.0f / 60.0f);
         Frame frame;
         std::optional<TimedPass> main_pass;  // from before the render pass begins to the lab's last draw

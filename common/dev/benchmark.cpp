@@ -35,16 +35,27 @@ std::string device_fields(const VkPhysicalDeviceProperties& device) {
     return "device=" + name + " device_type=" + type_name(device.deviceType);
 }
 
-Benchmark::Benchmark(int frames) : frames_(std::max(frames, 0)), last_done_(Clock::now()) {
+Benchmark::Benchmark(int frames, int warmup_ms)
+    : frames_(std::max(frames, 0)), warmup_ms_(std::max(warmup_ms, 0)), last_done_(Clock::now()) {
     frame_ms_.reserve(size_t(frames_));
+}
+
+bool Benchmark::wants_frame(int rendered) const {
+    if (!on()) return false;
+    // n intervals need n + 1 finished frames after the warm-up; one frame is always still in flight.
+    return warmup_frames_ < 0 || rendered < warmup_frames_ + frames_ + 1;
 }
 
 bool Benchmark::frame_finished(int index) {
     if (!on()) return false;
     const auto done = Clock::now();
-    if (index >= kWarmupFrames) frame_ms_.push_back(ms_between(last_done_, done));
+    if (index == 0) first_done_ = done;
+    const bool warm = warmup_frames_ >= 0;
+    if (warm) frame_ms_.push_back(ms_between(last_done_, done));
     last_done_ = done;
-    return index == kWarmupFrames - 1;
+    if (warm || index < kWarmupFrames - 1 || ms_between(first_done_, done) < warmup_ms_) return false;
+    warmup_frames_ = index + 1;
+    return true;
 }
 
 void Benchmark::print(const std::string& lab, uint32_t width, uint32_t height, const char* mode,

@@ -1,8 +1,11 @@
 // benchmark.h — what `--benchmark N` measures and prints (the dev layer: no lab code calls it).
 //
 // A frame time is the interval between two consecutive frames *finishing* on the GPU, with two
-// frames in flight as in a real loop: the throughput a program's frame rate shows. The first
-// kWarmupFrames are left out (pipeline compilation, caches). The report is one machine-readable
+// frames in flight as in a real loop: the throughput a program's frame rate shows. The warm-up is
+// left out: at least kWarmupFrames (pipeline compilation, caches) and at least `warmup_ms` of
+// frames (--dev-warmup-ms, default 1000). A GPU that has been idle runs at a low clock and raises it
+// only after some time under load: measured from a cold start, a short benchmark times the clock's
+// climb, not the program (docs/performance.md, "GPU time per pass"). The report is one machine-readable
 // line of key=value pairs for scripts and bench/:
 //   benchmark lab=… width=… height=… frames=… min_ms=… median_ms=… p95_ms=… mean_ms=… [target=window]
 //             device=… device_type=cpu|integrated|discrete|virtual|other
@@ -30,15 +33,18 @@ std::string device_fields(const VkPhysicalDeviceProperties& device);
 class Benchmark {
 public:
     static constexpr int kWarmupFrames = 3;
+    static constexpr int kDefaultWarmupMs = 1000;
 
-    // `frames` timed intervals (0: no benchmark; every method is then a no-op).
-    explicit Benchmark(int frames);
+    // `frames` timed intervals (0: no benchmark; every method is then a no-op) after the warm-up.
+    Benchmark(int frames, int warmup_ms);
     bool on() const { return frames_ > 0; }
-    // Frames to render for `frames` intervals: the warm-up, then n + 1 frames for n intervals.
-    int frames_to_render() const { return on() ? kWarmupFrames + frames_ + 1 : 0; }
+    // Whether the loop must render another frame: the warm-up is not over, or fewer than `frames`
+    // intervals are timed. `rendered`: frames submitted so far (one more than have finished).
+    bool wants_frame(int rendered) const;
     // Frame number `index` (from 0) has finished on the GPU. True when this ended the warm-up.
     bool frame_finished(int index);
     size_t timed_frames() const { return frame_ms_.size(); }
+    int warmup_frames() const { return warmup_frames_; }  // the frames the warm-up took
     // The report line on stdout (`mode`: nullptr, or "window"; `device`: what ran it).
     void print(const std::string& lab, uint32_t width, uint32_t height, const char* mode,
                const VkPhysicalDeviceProperties& device) const;
@@ -46,7 +52,9 @@ public:
 private:
     using Clock = std::chrono::steady_clock;
     int frames_;
-    Clock::time_point last_done_;
+    double warmup_ms_;
+    int warmup_frames_ = -1;  // -1: warming up
+    Clock::time_point first_done_, last_done_;
     std::vector<double> frame_ms_;
 };
 

@@ -8,7 +8,7 @@ namespace lab::dev {
 Instruments::Instruments(const VulkanContext& vk, InstrumentSettings settings)
     : settings_(std::move(settings)),
       device_(vk.properties()),
-      benchmark_(settings_.benchmark_frames),
+      benchmark_(settings_.benchmark_frames, settings_.warmup_ms),
       gpu_passes_(vk, settings_.window || benchmark_.on(), benchmark_.on()) {
     if (!settings_.status_file.empty()) status_ = std::make_unique<StatusFile>(settings_.status_file);
 }
@@ -44,7 +44,7 @@ bool Instruments::report(VkExtent2D extent, uint64_t ui_redraws) {
     if (benchmark_.timed_frames() == 0) return false;
     benchmark_.print(settings_.lab, extent.width, extent.height, settings_.window ? "window" : nullptr, device_);
     gpu_passes_.collect();  // the last frames' results
-    gpu_passes_.print(settings_.lab, Benchmark::kWarmupFrames, benchmark_.timed_frames());
+    gpu_passes_.print(settings_.lab, uint64_t(benchmark_.warmup_frames()), benchmark_.timed_frames());
     if (settings_.window) phases_.print(settings_.lab, benchmark_.timed_frames(), ui_redraws);
     return true;
 }

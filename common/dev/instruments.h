@@ -20,6 +20,7 @@ namespace lab::dev {
 struct InstrumentSettings {
     std::string lab;            // names the report lines
     int benchmark_frames = 0;   // --benchmark N: N timed frames (0: off)
+    int warmup_ms = Benchmark::kDefaultWarmupMs;  // --dev-warmup-ms: the benchmark's least warm-up
     bool window = false;        // a window (a benchmark also says where a frame's time goes)
     std::string status_file;    // --dev-status-file PATH (empty: off)
     int fail_after_submit = 0;  // --dev-fail-after-submit N (0: off)
@@ -30,8 +31,9 @@ public:
     Instruments(const VulkanContext& vk, InstrumentSettings settings);
 
     bool benchmarking() const { return benchmark_.on(); }
-    // Frames a benchmark renders: the warm-up, then one more than the intervals it times.
-    int benchmark_frames() const { return benchmark_.frames_to_render(); }
+    // Whether a benchmark must render another frame (`rendered`: the frames submitted so far):
+    // its warm-up, then one more frame than the intervals it times.
+    bool benchmark_wants_frame(int rendered) const { return benchmark_.wants_frame(rendered); }
     // What the loop draws through: `target` and the lab's commands as they are, or timed
     // (frame_phases.h) when a window benchmark asks where the time goes.
     RenderTarget& measured(RenderTarget& target);
