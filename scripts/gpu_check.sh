@@ -4,7 +4,8 @@
 # It packs the build with ../shared/tools/gpu_bundle.sh and writes .gpu/check.sh. Then call the device tool:
 #     run(command="bash .gpu/check.sh", carry=[".gpu"])
 # check.sh prints the device and its texture precision limits, renders every lab headless with
-# --validate, runs `--benchmark 300`, runs every GoogleTest program (the render tests against the
+# --validate, runs `--benchmark 300`, times lab 4 animated from a cold GPU with and without the
+# benchmark's one-second warm-up (the GPU's clocks each second in clocks_per_second.txt), runs every GoogleTest program (the render tests against the
 # reference; the script tests need Python, CMake, Xvfb, which the GPU machine lacks), lab 4's
 # random-scene regressions, then its random scenes 7300..7699 (CTest runs 0..299) and the
 # translucent stacks 0..399. Logs and failing
@@ -31,6 +32,16 @@ vi=/opt/labgpu/bin/vulkaninfo
 for lab in \$(ls -d $build/lab*_*/); do n=\$(basename "\$lab")
   "\$lab/\$n" --headless --validate --out \$OUT/\$n.png 2>&1 | tail -1; "\$lab/\$n" --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) '
 done | tee \$OUT/labs.txt
+# The GPU's clock while the benchmarks run (nvidia-smi, where the driver has it; read only, nothing
+# set): the limits in clocks.txt, one line a second in clocks_per_second.txt. Then lab 4 animated
+# from a cold GPU with the warm-up of before 27 Nov 2026 (three frames, --dev-warmup-ms 0) against
+# the default (a second at least).
+smi=\$(command -v nvidia-smi || ls /usr/local/nvidia/bin/nvidia-smi 2>/dev/null || true)
+[ -n "\$smi" ] && { \$smi --query-gpu=clocks.sm,clocks.max.sm,clocks.mem,pstate --format=csv | tee \$OUT/clocks.txt
+  \$smi --query-gpu=timestamp,clocks.sm,clocks.mem,pstate,utilization.gpu --format=csv,noheader -lms 200 > \$OUT/smi.csv 2>&1 & smi_pid=\$!; }
+for w in 0 1000 0 1000; do
+  echo "lab4 animated warm-up \$w ms: \$($build/lab4_shadows/lab4_shadows --dev-animate-lights --benchmark 300 --dev-warmup-ms \$w 2>&1 | grep -E '^(benchmark|gpu_passes) ' | tr '\\n' ' ')"
+done | tee \$OUT/warmup.txt
 # Lab 4 with its maps re-rendered every frame (issue: ≤ 1 ms on an H200): the default scene, swlike
 # and the gallery's translucent layers, two rounds each, with the GPU time of every pass.
 for r in 1 2; do for v in animated swlike layers; do
@@ -45,6 +56,7 @@ ls $build/tests/test_* | grep -vE '\\.cmake\$|_tests\\.cmake' | while read -r t;
 grep -h -E '^\\[  (PASSED|FAILED) |^\\[  FAILED  \\]' \$OUT/gtest_*.log | sort | uniq -c | tee -a \$OUT/gtest.txt
 $build/tests/lab4_random_scenes --seeds 7638,7678 > \$OUT/random_regressions.log 2>&1; tail -2 \$OUT/random_regressions.log
 find $build/test_output -name '*_diff.png' | tar czf \$OUT/diffs.tgz -T - 2>/dev/null
+[ -f \$OUT/smi.csv ] && { kill \$smi_pid 2>/dev/null; awk -F', ' '{ split(\$1, t, " "); s = substr(t[2], 1, 8); if (s != last) print s, \$2, \$3, \$4, \$5; last = s }' \$OUT/smi.csv > \$OUT/clocks_per_second.txt; rm \$OUT/smi.csv; }
 # Lab 4's random scenes beyond CTest's shards (seeds 7300..7699, 8 parts at once; tests/lab4_random_scenes.cpp):
 # the summary lines and failures in random_scenes.txt, each failing scene's pictures under random/.
 for p in 0 1 2 3 4 5 6 7; do
