@@ -24,8 +24,8 @@ bool edit_map(const char* label, std::string& map) {
 
 bool textures_panel(Lighting& l, const std::vector<std::string>& warnings, const std::string& auto_choice,
                     float frame_ms) {
-    ImGui::SetNextWindowPos(ImVec2(10.0f, ImGui::GetIO().DisplaySize.y - 330.0f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(10.0f, ImGui::GetIO().DisplaySize.y - 300.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380.0f, 290.0f), ImGuiCond_FirstUseEver);  // below the Camera panel at 720 px
     ImGui::Begin("Textures");
     ImGui::Text("%.2f ms/frame", frame_ms);
     bool rebuild = ImGui::Checkbox("mip-level view", &l.mip_view);

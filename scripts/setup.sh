@@ -19,6 +19,7 @@ packages=(
   build-essential cmake pkg-config
   patch                        # make_diffs.sh --check applies the instructor diffs
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
+  vulkan-tools                 # vulkaninfo: scripts/gpu_check.sh packs it for a lent GPU
   libglfw3-dev libglm-dev libstb-dev libimgui-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev
   assimp-testmodels            # real-world OBJ files for the mesh loader tests
