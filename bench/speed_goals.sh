@@ -90,6 +90,9 @@ run() {  # name → the median ms of one --benchmark run in a window
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
 echo "speed_goals: $cpu, LP_NUM_THREADS=$LP_NUM_THREADS, 1280x720 windows, $rounds rounds of --benchmark $frames --window, $(date -u +%F)"
 declare -A times
+# One untimed run first: the first window on an X server draws slowly (27 Nov 2026, three runs: lab 1
+# took 15.5-16.7 ms in round 1 and 7.6-11.2 ms in the rounds after, which flattered every ratio).
+run lab1 >/dev/null
 for ((r = 1; r <= rounds; ++r)); do
   line="round $r:"
   for n in "${names[@]}"; do
