@@ -185,12 +185,14 @@ TEST(Cli, DeveloperOptionsAreOffByDefault) {
     EXPECT_FALSE(d.animate_lights);
     EXPECT_EQ(d.shadow_view, -1);
     EXPECT_FALSE(d.mip_view);
+    EXPECT_EQ(d.warmup_ms, 1000);  // on, but only --benchmark uses it
 }
 
 TEST(Cli, EveryDeveloperOption) {
     const lab::Options o = parse({"--dev-status-file", "s.txt", "--dev-fail-after-submit=3", "--dev-validation-probe",
                                   "--dev-no-blit", "--dev-shader-dir", "/tmp/sh", "--dev-scene-dir=/tmp/sc",
-                                  "--dev-animate-lights", "--dev-shadow-view", "2", "--dev-mip-view", "--width", "64"});
+                                  "--dev-animate-lights", "--dev-shadow-view", "2", "--dev-mip-view", "--dev-warmup-ms", "0",
+                                  "--width", "64"});
     EXPECT_EQ(o.dev.status_file, "s.txt");
     EXPECT_EQ(o.dev.fail_after_submit, 3);
     EXPECT_TRUE(o.dev.validation_probe);
@@ -200,6 +202,7 @@ TEST(Cli, EveryDeveloperOption) {
     EXPECT_TRUE(o.dev.animate_lights);
     EXPECT_EQ(o.dev.shadow_view, 2);
     EXPECT_TRUE(o.dev.mip_view);
+    EXPECT_EQ(o.dev.warmup_ms, 0);
     EXPECT_EQ(o.width, 64u);  // the students' options still parse beside them
 }
 
@@ -207,6 +210,7 @@ TEST(Cli, DeveloperOptionMistakes) {
     EXPECT_CONTAINS(error_of({"--dev-fail-after-submit", "x"}), "expected a whole number");
     EXPECT_CONTAINS(error_of({"--dev-fail-after-submit", "0"}), "out of range");
     EXPECT_CONTAINS(error_of({"--dev-shadow-view", "-1"}), "out of range");
+    EXPECT_CONTAINS(error_of({"--dev-warmup-ms", "-1"}), "out of range");
     EXPECT_CONTAINS(error_of({"--dev-no-blit=1"}), "takes no value");
     EXPECT_CONTAINS(error_of({"--dev-mip-view=1"}), "takes no value");
     EXPECT_CONTAINS(error_of({"--dev-status-file"}), "missing value");
