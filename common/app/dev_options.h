@@ -19,7 +19,7 @@ struct DevOptions {
     bool animate_lights = false;    // --dev-animate-lights: lab 4's lights circle the Y axis
     int shadow_view = -1;           // --dev-shadow-view N: lab 4 shows light N's shadow map (-1: none)
     bool mip_view = false;          // --dev-mip-view: labs 3 and 4 start with the mip-level view on
-    int warmup_ms = 1000;           // --dev-warmup-ms N: a benchmark's warm-up lasts at least N ms (dev/benchmark.h)
+    int warmup_ms = 1000;           // --dev-warmup-ms N: a benchmark's warm-up lasts at least N ms (dev/benchmark.h: why)
 };
 
 // One option of the command line (cli.cpp lists the students' ones, this file the developer ones).

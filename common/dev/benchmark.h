@@ -33,7 +33,6 @@ std::string device_fields(const VkPhysicalDeviceProperties& device);
 class Benchmark {
 public:
     static constexpr int kWarmupFrames = 3;
-    static constexpr int kDefaultWarmupMs = 1000;
 
     // `frames` timed intervals (0: no benchmark; every method is then a no-op) after the warm-up.
     Benchmark(int frames, int warmup_ms);

@@ -20,7 +20,7 @@ namespace lab::dev {
 struct InstrumentSettings {
     std::string lab;            // names the report lines
     int benchmark_frames = 0;   // --benchmark N: N timed frames (0: off)
-    int warmup_ms = Benchmark::kDefaultWarmupMs;  // --dev-warmup-ms: the benchmark's least warm-up
+    int warmup_ms = 0;          // --dev-warmup-ms N: the benchmark's least warm-up (its default: dev_options.h)
     bool window = false;        // a window (a benchmark also says where a frame's time goes)
     std::string status_file;    // --dev-status-file PATH (empty: off)
     int fail_after_submit = 0;  // --dev-fail-after-submit N (0: off)
