@@ -50,6 +50,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -103,6 +105,57 @@ void add_light(Rng& r, json light, json& s) {
 }
 
 json vec(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+// Where one kind of scene puts its light (random_light): how far a near light stands from the
+// group's middle, where it goes when 50 tries found no place outside every caster (none: the last
+// try), the half-size a far spot's cone must cover and its narrowest cone.
+struct LightSpread {
+    std::function<double(Rng&)> near_distance;
+    std::optional<glm::dvec3> fallback;
+    double cover;
+    double least_outer_deg;
+};
+
+// The scene's light, described (light_place): directional, point, spot or a far spot whose cone just
+// covers the group, placed where `outside` says no caster is. Draws from `r` in the order both kinds
+// of scene were generated with (every seed keeps its scene).
+std::pair<json, std::string> random_light(Rng& r, const glm::dvec3& middle, double g,
+                                          const std::function<bool(const glm::dvec3&)>& outside, const LightSpread& spread) {
+    const int type = r.pick(3);
+    if (type == 0) {
+        const glm::dvec3 d = r.chance(0.1) ? glm::dvec3(0.0, -1.0, 0.0) : r.direction(-1.0, -0.25);
+        return {{{"type", "directional"}, {"direction", vec(d)}}, "directional"};
+    }
+    glm::dvec3 p;
+    const bool far_spot = type == 2 && r.chance(0.35);
+    for (int tries = 0;; ++tries) {
+        // Near lights as `spread` says; far spots 30-300 caster sizes away (10²-10⁵), with a cone
+        // that just covers the group (a float cosine draws none narrower than ~0.5°).
+        const double distance = far_spot ? std::clamp(r.log_uniform(100.0, 1e5), 30.0 * g, 300.0 * g) : spread.near_distance(r);
+        p = middle + r.direction(0.2, 1.0) * distance;
+        if (outside(p)) break;
+        if (tries > 50) {
+            if (spread.fallback) p = *spread.fallback;
+            break;
+        }
+    }
+    json light;
+    std::string kind;
+    double outer = 0.0;
+    if (type == 1) {
+        light = {{"type", "point"}, {"position", vec(p)}};
+        kind = "point";
+    } else {
+        const glm::dvec3 aim = middle + glm::dvec3(r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5)) * g;
+        const double cover = glm::degrees(std::atan2(spread.cover, glm::length(aim - p)));
+        outer = far_spot ? std::clamp(cover * r.uniform(1.0, 2.0), spread.least_outer_deg, 89.0)
+                         : (r.chance(0.3) ? r.uniform(80.0, 90.0) : r.uniform(15.0, 80.0));
+        light = {{"type", "spot"}, {"position", vec(p)}, {"direction", vec(aim - p)},
+                 {"outer_deg", outer}, {"inner_deg", outer * r.uniform(0.3, 0.9)}};
+        kind = far_spot ? "far spot" : "spot";
+    }
+    return {light, kind + light_place(glm::length(p - middle), type == 2, outer)};
+}
 
 struct Generated {
     json scene;
@@ -169,38 +222,8 @@ Generated generate(uint64_t seed) {
             if (glm::length(p - b.at) < b.radius * 1.05 + 1e-3 * g) return false;
         return true;
     };
-    json light;
-    std::string kind;
-    const int type = r.pick(3);
-    if (type == 0) {
-        glm::dvec3 d = r.chance(0.1) ? glm::dvec3(0.0, -1.0, 0.0) : r.direction(-1.0, -0.25);
-        light = {{"type", "directional"}, {"direction", vec(d)}};
-        kind = "directional";
-    } else {
-        glm::dvec3 p;
-        double outer = 0.0;
-        bool far_spot = type == 2 && r.chance(0.35);
-        for (int tries = 0;; ++tries) {
-            // Near lights: 0.3-20 caster sizes from the group's middle (casters 0.01-1000 away);
-            // far spots: 10²-10⁵ away with a cone that just covers the group.
-            // (A far spot's cone stays ≥ ~0.5°: a float cosine cannot draw a narrower one.)
-            const double distance = far_spot ? std::clamp(r.log_uniform(100.0, 1e5), 30.0 * g, 300.0 * g) : g * r.log_uniform(0.3, 20.0);
-            p = middle + r.direction(0.2, 1.0) * distance;
-            if (outside(p) || tries > 50) break;
-        }
-        if (type == 1) {
-            light = {{"type", "point"}, {"position", vec(p)}};
-            kind = "point";
-        } else {
-            const glm::dvec3 aim = middle + glm::dvec3(r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5)) * g;
-            const double cover = glm::degrees(std::atan2(3.0 * g, glm::length(aim - p)));
-            outer = far_spot ? std::min(89.0, cover * r.uniform(1.0, 2.0)) : (r.chance(0.3) ? r.uniform(80.0, 90.0) : r.uniform(15.0, 80.0));
-            light = {{"type", "spot"}, {"position", vec(p)}, {"direction", vec(aim - p)},
-                     {"outer_deg", outer}, {"inner_deg", outer * r.uniform(0.3, 0.9)}};
-            kind = far_spot ? "far spot" : "spot";
-        }
-        kind += light_place(glm::length(p - middle), type == 2, outer);
-    }
+    // Near lights: 0.3-20 caster sizes from the group's middle (casters 0.01-1000 away).
+    const auto [light, kind] = random_light(r, middle, g, outside, {[g](Rng& rng) { return g * rng.log_uniform(0.3, 20.0); }, {}, 3.0 * g, 0.0});
     add_light(r, light, s);
     // The camera: 4-8 caster sizes from the group, looking down at it.
     const glm::dvec3 eye = middle + r.direction(0.3, 0.85) * (g * r.uniform(4.0, 8.0));
@@ -369,43 +392,11 @@ Generated generate_stacks(uint64_t seed) {
             if (glm::length(q - p.at) < p.radius * 1.05 + 1e-3 * g) return false;
         return true;
     };
-    // The light, as in the default scenes, at distances measured from the group's reach.
-    json light;
-    std::string kind;
-    const int type = r.pick(3);
-    if (type == 0) {
-        const glm::dvec3 d = r.chance(0.1) ? glm::dvec3(0.0, -1.0, 0.0) : r.direction(-1.0, -0.25);
-        light = {{"type", "directional"}, {"direction", vec(d)}};
-        kind = "directional";
-    } else {
-        glm::dvec3 p;
-        double outer = 0.0;
-        const bool far_spot = type == 2 && r.chance(0.35);
-        for (int tries = 0;; ++tries) {
-            // Near lights: just outside the group up to ~20 caster sizes away; far spots 30-300 g.
-            const double distance = far_spot ? std::clamp(r.log_uniform(100.0, 1e5), 30.0 * g, 300.0 * g)
-                                             : reach * r.uniform(0.6, 1.2) + g * r.log_uniform(0.1, 15.0);
-            p = middle + r.direction(0.2, 1.0) * distance;
-            if (outside(p)) break;
-            if (tries > 50) {  // straight up, beyond every caster
-                p = middle + glm::dvec3(0.0, reach + g, 0.0);
-                break;
-            }
-        }
-        if (type == 1) {
-            light = {{"type", "point"}, {"position", vec(p)}};
-            kind = "point";
-        } else {
-            const glm::dvec3 aim = middle + glm::dvec3(r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5), r.uniform(-0.5, 0.5)) * g;
-            const double cover = glm::degrees(std::atan2(reach + 2.0 * g, glm::length(aim - p)));
-            outer = far_spot ? std::clamp(cover * r.uniform(1.0, 2.0), 0.6, 89.0)
-                             : (r.chance(0.3) ? r.uniform(80.0, 90.0) : r.uniform(15.0, 80.0));
-            light = {{"type", "spot"}, {"position", vec(p)}, {"direction", vec(aim - p)},
-                     {"outer_deg", outer}, {"inner_deg", outer * r.uniform(0.3, 0.9)}};
-            kind = far_spot ? "far spot" : "spot";
-        }
-        kind += light_place(glm::length(p - middle), type == 2, outer);
-    }
+    // The light, as in the default scenes, at distances measured from the group's reach: near lights
+    // just outside it up to ~20 caster sizes away; after 50 tries, straight up beyond every caster.
+    const auto [light, kind] = random_light(r, middle, g, outside,
+                                            {[g, reach](Rng& rng) { return reach * rng.uniform(0.6, 1.2) + g * rng.log_uniform(0.1, 15.0); },
+                                             middle + glm::dvec3(0.0, reach + g, 0.0), reach + 2.0 * g, 0.6});
     add_light(r, light, s);
     // The camera: 1.2-2 times the group's reach (plus a caster size) from its middle, looking down at it.
     const glm::dvec3 eye = middle + r.direction(0.3, 0.85) * ((reach + g) * r.uniform(1.2, 2.0));
