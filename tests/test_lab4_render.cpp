@@ -103,38 +103,57 @@ std::string describe(const Judged& j, const std::string& name) {
     return j.metric.line() + "\n  see " + kLab.path(name) + "{.png,_expected.png,_metric.png}";
 }
 
-// Pixels deep inside a shadow of the reference: the opaque surface is `object`, no translucent
-// layer in front, the light visibly dimmed (U − S ≥ 3/255) and S constant (±1) over the
-// (2r+1)² neighbourhood. Returns the largest |actual − S| there and how many pixels were checked.
+// What a look at pixels deep inside one area of the reference found (interior(), below): how many
+// were checked and the largest |actual − S| among them.
 struct Interior {
     size_t pixels = 0;
     int max_diff = 0;
     std::set<int> levels;  // distinct S values (green channel) seen
 };
-Interior shadow_interior(const Judged& j, int object, int r = 4) {
+// Pixels deep inside one area of the reference picture (shadow_interior, flat_interior): `same(i, q)`
+// for every pixel q of the (2r+1)² neighbourhood of pixel i, the reference's colour S the same (±1)
+// over it, and `shows(x, y)`. The largest |actual − S| there.
+Interior interior(const Judged& j, int r, const std::function<bool(size_t, size_t)>& same,
+                  const std::function<bool(int, int)>& shows) {
     Interior in;
     const int w = j.shadowed.width, h = j.shadowed.height;
     const auto at = [&](const lab::Image8& im, int x, int y, int ch) { return int(im.rgba[(size_t(y) * w + x) * 4 + ch]); };
     for (int y = r; y < h - r; ++y)
         for (int x = r; x < w - r; ++x) {
+            const size_t i = size_t(y) * w + x;
             bool inside = true;
             for (int dy = -r; dy <= r && inside; ++dy)
                 for (int dx = -r; dx <= r && inside; ++dx) {
-                    const size_t q = size_t(y + dy) * w + size_t(x + dx);
-                    inside = j.reference.shadowed.object_id[q] == object;
+                    inside = same(i, size_t(y + dy) * w + size_t(x + dx));
                     for (int ch = 0; ch < 3 && inside; ++ch)
                         inside = std::abs(at(j.shadowed, x + dx, y + dy, ch) - at(j.shadowed, x, y, ch)) <= 1;
                 }
-            if (!inside) continue;
-            int dimmed = 0;
-            for (int ch = 0; ch < 3; ++ch) dimmed = std::max(dimmed, at(j.unshadowed, x, y, ch) - at(j.shadowed, x, y, ch));
-            if (dimmed < 3) continue;
+            if (!inside || !shows(x, y)) continue;
             ++in.pixels;
             in.levels.insert(at(j.shadowed, x, y, 1));
             for (int ch = 0; ch < 3; ++ch)
                 in.max_diff = std::max(in.max_diff, std::abs(at(j.actual, x, y, ch) - at(j.shadowed, x, y, ch)));
         }
     return in;
+}
+
+// The largest of a pixel's three channels of |a − b| (a − b when `signed_difference`).
+int channel_difference(const lab::Image8& a, const lab::Image8& b, int x, int y, bool signed_difference = false) {
+    int most = 0;
+    for (int ch = 0; ch < 3; ++ch) {
+        const size_t k = (size_t(y) * size_t(a.width) + size_t(x)) * 4 + size_t(ch);
+        const int d = int(a.rgba[k]) - int(b.rgba[k]);
+        most = std::max(most, signed_difference ? d : std::abs(d));
+    }
+    return most;
+}
+
+// Inside a shadow of the reference: the opaque surface is `object` (no translucent layer in front),
+// the light visibly dimmed there (U − S ≥ 3/255).
+Interior shadow_interior(const Judged& j, int object, int r = 4) {
+    const std::vector<int>& id = j.reference.shadowed.object_id;
+    return interior(j, r, [&](size_t, size_t q) { return id[q] == object; },
+                    [&](int x, int y) { return channel_difference(j.unshadowed, j.shadowed, x, y, true) >= 3; });
 }
 
 // A scene with long and short shadows of flat-faced casters: a cube, an icosahedron, a thin post.
@@ -428,35 +447,12 @@ std::vector<PixelLayers> pixel_layers(const lab::Scene& scene, int width, int he
     return out;
 }
 
-// Pixels deep inside one area of the reference picture: `mask` set, the same surfaces (object_id,
-// which also encodes the translucent layers in front) and the same colour (±1) over the (2r+1)²
-// neighbourhood, and a light that shows (U − Z ≥ 3/255). The largest |actual − S| there.
+// Inside one area where `mask` is set: the same surfaces over the neighbourhood (object_id, which
+// also encodes the translucent layers in front) and a light that shows (|U − Z| ≥ 3/255).
 Interior flat_interior(const Judged& j, const std::vector<uint8_t>& mask, int r = 4) {
-    Interior in;
-    const int w = j.shadowed.width, h = j.shadowed.height;
-    const auto at = [&](const lab::Image8& im, int x, int y, int ch) { return int(im.rgba[(size_t(y) * w + x) * 4 + ch]); };
-    for (int y = r; y < h - r; ++y)
-        for (int x = r; x < w - r; ++x) {
-            const size_t i = size_t(y) * w + x;
-            if (!mask[i]) continue;
-            bool inside = true;
-            for (int dy = -r; dy <= r && inside; ++dy)
-                for (int dx = -r; dx <= r && inside; ++dx) {
-                    const size_t q = size_t(y + dy) * w + size_t(x + dx);
-                    inside = mask[q] && j.reference.shadowed.object_id[q] == j.reference.shadowed.object_id[i];
-                    for (int ch = 0; ch < 3 && inside; ++ch)
-                        inside = std::abs(at(j.shadowed, x + dx, y + dy, ch) - at(j.shadowed, x, y, ch)) <= 1;
-                }
-            if (!inside) continue;
-            int shows = 0;
-            for (int ch = 0; ch < 3; ++ch) shows = std::max(shows, std::abs(at(j.unshadowed, x, y, ch) - at(j.unlit, x, y, ch)));
-            if (shows < 3) continue;
-            ++in.pixels;
-            in.levels.insert(at(j.shadowed, x, y, 1));
-            for (int ch = 0; ch < 3; ++ch)
-                in.max_diff = std::max(in.max_diff, std::abs(at(j.actual, x, y, ch) - at(j.shadowed, x, y, ch)));
-        }
-    return in;
+    const std::vector<int>& id = j.reference.shadowed.object_id;
+    return interior(j, r, [&](size_t i, size_t q) { return mask[i] && mask[q] && id[q] == id[i]; },
+                    [&](int x, int y) { return channel_difference(j.unshadowed, j.unlit, x, y) >= 3; });
 }
 
 // The camera pass where translucent layers show, against the reference, with the edge mask left out
