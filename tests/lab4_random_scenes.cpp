@@ -162,14 +162,24 @@ struct Generated {
     std::string summary;  // one line: what kind of scene this is
 };
 
-// Seed → scene. `g` is the casters' size; everything else is placed relative to it.
-Generated generate(uint64_t seed) {
-    Rng r(seed);
-    const double g = r.log_uniform(0.01, 400.0);
-    // The group's centre: near the origin, or far off-centre (up to 10⁴, and 10⁴ caster sizes).
-    glm::dvec3 centre = r.chance(0.4) ? r.direction(-0.3, 0.3) * (g * r.uniform(0.0, 2.0))
-                                      : r.direction(-0.3, 0.3) * std::min(1e4, g * r.log_uniform(10.0, 1e4));
-    json s;
+// What both kinds of scene start with, drawn from `r` in the order they always were: the casters'
+// size g, the group's centre near the origin or far off-centre (up to 10⁴, and 10⁴ caster sizes),
+// the materials, and the receiver: a horizontal floor up to 10⁴ across under the group (not centred
+// on it).
+struct SceneStart {
+    double g;
+    glm::dvec3 centre;
+    double floor_half;
+    glm::dvec3 floor_at;
+    json scene;
+};
+SceneStart start_scene(Rng& r) {
+    SceneStart st;
+    st.g = r.log_uniform(0.01, 400.0);
+    const double g = st.g;
+    st.centre = r.chance(0.4) ? r.direction(-0.3, 0.3) * (g * r.uniform(0.0, 2.0))
+                              : r.direction(-0.3, 0.3) * std::min(1e4, g * r.log_uniform(10.0, 1e4));
+    json& s = st.scene;
     s["background"] = {0.05, 0.05, 0.06};
     s["ambient"] = {{"intensity", 0.08}};
     s["lighting"] = {{"nan_check", "on"}};
@@ -178,12 +188,21 @@ Generated generate(uint64_t seed) {
                       {"green", {{"albedo", {0.3, 0.7, 0.35}}}},
                       {"glass", {{"albedo", {0.3, 0.5, 0.9}}, {"opacity", 0.35}}},
                       {"amber", {{"albedo", {0.9, 0.6, 0.1}}, {"opacity", 0.6}}}};
-    // The receiver: a horizontal floor up to 10⁴ across under the group (not centred on it).
-    const double floor_half = std::min(5e3, g * r.log_uniform(4.0, 2e3));
-    const glm::dvec3 floor_at = centre + glm::dvec3(r.uniform(-0.5, 0.5), 0.0, r.uniform(-0.5, 0.5)) * std::min(floor_half, 3.0 * g);
+    st.floor_half = std::min(5e3, g * r.log_uniform(4.0, 2e3));
+    st.floor_at = st.centre + glm::dvec3(r.uniform(-0.5, 0.5), 0.0, r.uniform(-0.5, 0.5)) * std::min(st.floor_half, 3.0 * g);
     s["objects"] = json::array();
-    s["objects"].push_back({{"mesh", "plane"}, {"material", "floor"}, {"position", vec(floor_at)},
-                            {"scale", {2.0 * floor_half, 1.0, 2.0 * floor_half}}});
+    s["objects"].push_back({{"mesh", "plane"}, {"material", "floor"}, {"position", vec(st.floor_at)},
+                            {"scale", {2.0 * st.floor_half, 1.0, 2.0 * st.floor_half}}});
+    return st;
+}
+
+// Seed → scene. `g` is the casters' size; everything else is placed relative to it.
+Generated generate(uint64_t seed) {
+    Rng r(seed);
+    const SceneStart start = start_scene(r);
+    const double g = start.g, floor_half = start.floor_half;
+    const glm::dvec3 centre = start.centre, floor_at = start.floor_at;
+    json s = start.scene;
     // Casters: 1-4 cubes and icosahedra above the floor, some thin, mirrored, translucent.
     struct Ball {
         glm::dvec3 at;
@@ -265,28 +284,16 @@ double half_height(const glm::dvec3& h, const glm::dvec3& degrees) {
 
 Generated generate_stacks(uint64_t seed) {
     Rng r(seed);
-    const double g = r.log_uniform(0.01, 400.0);
-    const glm::dvec3 centre = r.chance(0.4) ? r.direction(-0.3, 0.3) * (g * r.uniform(0.0, 2.0))
-                                            : r.direction(-0.3, 0.3) * std::min(1e4, g * r.log_uniform(10.0, 1e4));
-    json s;
-    s["background"] = {0.05, 0.05, 0.06};
-    s["ambient"] = {{"intensity", 0.08}};
-    s["lighting"] = {{"nan_check", "on"}};
-    s["materials"] = {{"floor", {{"albedo", {0.8, 0.8, 0.8}}}},
-                      {"red", {{"albedo", {0.8, 0.3, 0.2}}}},
-                      {"green", {{"albedo", {0.3, 0.7, 0.35}}}},
-                      {"glass", {{"albedo", {0.3, 0.5, 0.9}}, {"opacity", 0.35}}},
-                      {"amber", {{"albedo", {0.9, 0.6, 0.1}}, {"opacity", 0.6}}},
-                      {"ruby", {{"albedo", {0.85, 0.12, 0.15}}, {"opacity", 0.5}}},
-                      {"jade", {{"albedo", {0.1, 0.75, 0.3}}, {"opacity", 0.45}}},
-                      {"smoke", {{"albedo", {0.55, 0.55, 0.55}}, {"opacity", 0.25}}},
-                      {"ink", {{"albedo", {0.15, 0.2, 0.6}}, {"opacity", 0.75}}}};
+    const SceneStart start = start_scene(r);
+    const double g = start.g, floor_half = start.floor_half;
+    const glm::dvec3 centre = start.centre, floor_at = start.floor_at;
+    json s = start.scene;
+    // More translucent materials than the default scenes' two.
+    s["materials"].update({{"ruby", {{"albedo", {0.85, 0.12, 0.15}}, {"opacity", 0.5}}},
+                           {"jade", {{"albedo", {0.1, 0.75, 0.3}}, {"opacity", 0.45}}},
+                           {"smoke", {{"albedo", {0.55, 0.55, 0.55}}, {"opacity", 0.25}}},
+                           {"ink", {{"albedo", {0.15, 0.2, 0.6}}, {"opacity", 0.75}}}});
     const char* see_through[] = {"glass", "amber", "ruby", "jade", "smoke", "ink"};
-    const double floor_half = std::min(5e3, g * r.log_uniform(4.0, 2e3));
-    const glm::dvec3 floor_at = centre + glm::dvec3(r.uniform(-0.5, 0.5), 0.0, r.uniform(-0.5, 0.5)) * std::min(floor_half, 3.0 * g);
-    s["objects"] = json::array();
-    s["objects"].push_back({{"mesh", "plane"}, {"material", "floor"}, {"position", vec(floor_at)},
-                            {"scale", {2.0 * floor_half, 1.0, 2.0 * floor_half}}});
     struct Piece {
         std::string mesh, material;
         glm::dvec3 at, scale, rotation;
