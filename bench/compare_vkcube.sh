@@ -15,7 +15,8 @@ exe="${LAB_BUILD_DIR:-$root/build}/$lab/$lab"
 command -v vkcube >/dev/null || { echo "vkcube missing: apt-get install vulkan-tools" >&2; exit 1; }
 
 if [ -z "${DISPLAY:-}" ]; then
-  Xvfb :97 -screen 0 1600x900x24 >/dev/null 2>&1 &
+  # -noreset: each run below is the server's last client, and a reset as it leaves can refuse the next run.
+  Xvfb :97 -screen 0 1600x900x24 -noreset >/dev/null 2>&1 &
   xvfb_pid=$!
   trap 'kill $xvfb_pid' EXIT
   export DISPLAY=:97

@@ -328,11 +328,16 @@ class LabSoak:
 
     # ---- the X server, the window manager, the lab
     def start_x(self):
-        """A private X server (-displayfd picks a free display) and openbox on it; DISPLAY names it."""
+        """A private X server (-displayfd picks a free display) and openbox on it; DISPLAY names it.
+
+        -noreset: by default an X server resets when its last client leaves, and refuses
+        connections for that moment. The xprop probes below are such last clients, so openbox,
+        started right after one, could find the display closed, three tries in a row (CI, once)."""
         display = self.work / "display"
         with open(display, "w") as fd_file, open(self.work / "xvfb.log", "w") as log:
             self.xvfb = subprocess.Popen(
-                ["Xvfb", "-displayfd", str(fd_file.fileno()), "-screen", "0", "1280x800x24", "-nolisten", "tcp"],
+                ["Xvfb", "-displayfd", str(fd_file.fileno()), "-screen", "0", "1280x800x24", "-nolisten", "tcp",
+                 "-noreset"],
                 stdout=log, stderr=log, pass_fds=(fd_file.fileno(),), preexec_fn=die_with_parent)
         for _ in range(100):
             if display.read_text().strip():

@@ -42,7 +42,8 @@ command -v glslangValidator >/dev/null || { echo "speed_goals: glslangValidator 
 if [ -z "${DISPLAY:-}" ]; then
   command -v Xvfb >/dev/null || { echo "speed_goals: no DISPLAY and no Xvfb" >&2; exit 2; }
   for n in $(seq 90 99); do [ -e "/tmp/.X$n-lock" ] || { display=":$n"; break; }; done
-  Xvfb "$display" -screen 0 1280x720x24 >/dev/null 2>&1 &
+  # -noreset: each run below is the server's last client, and a reset as it leaves can refuse the next run.
+  Xvfb "$display" -screen 0 1280x720x24 -noreset >/dev/null 2>&1 &
   xvfb_pid=$!
   export DISPLAY="$display"
   sleep 1

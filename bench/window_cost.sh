@@ -26,7 +26,8 @@ rounds="${ROUNDS:-3}"
 short="${SHORT:-100}" long="${LONG:-600}"  # frame counts of the two runs per figure
 tmp=$(mktemp -d)
 if [ -z "${DISPLAY:-}" ]; then
-  Xvfb :97 -screen 0 1600x900x24 >/dev/null 2>&1 &
+  # -noreset: each run below is the server's last client, and a reset as it leaves can refuse the next run.
+  Xvfb :97 -screen 0 1600x900x24 -noreset >/dev/null 2>&1 &
   xvfb_pid=$!
   trap 'kill $xvfb_pid; rm -rf "$tmp"' EXIT
   export DISPLAY=:97
