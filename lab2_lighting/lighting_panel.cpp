@@ -13,7 +13,6 @@ const char* const kModels[] = {"Lambert", "Phong", "Blinn-Phong", "Toon / cel", 
 const char* const kShadings[] = {"Flat (per triangle)", "Gouraud (per vertex)", "Phong (per pixel)"};
 const char* const kFalloffs[] = {"smooth (inner..outer)", "edge 1-(1-cos b)/(1-cos a)"};
 const char* const kDistributions[] = {"GGX", "Beckmann"};
-const char* const kTypes[] = {"directional", "point", "spot"};
 
 void edit_light(lab::LightDesc& l) {
     const bool directional = l.type == lab::LightDesc::Type::Directional;
@@ -82,7 +81,7 @@ void lighting_panel(Lighting& l) {
             if (t > 0) ImGui::SameLine();
             const bool full = l.count(Type(t)) >= limits[t];
             if (full) ImGui::BeginDisabled();
-            if (ImGui::Button((std::string("+ ") + kTypes[t]).c_str())) {
+            if (ImGui::Button((std::string("+ ") + lab::light_type_name(Type(t))).c_str())) {
                 lab::LightDesc light;
                 light.type = Type(t);
                 light.position = {0.0f, 2.0f, 0.0f};
@@ -95,7 +94,7 @@ void lighting_panel(Lighting& l) {
                     l.count(Type::Spot));
         for (size_t i = 0; i < l.lights.size(); ++i) {
             ImGui::PushID(int(i));
-            const bool open = ImGui::TreeNode("light", "%s %zu", kTypes[int(l.lights[i].type)], i);
+            const bool open = ImGui::TreeNode("light", "%s %zu", lab::light_type_name(l.lights[i].type), i);
             ImGui::SameLine();
             const bool remove = ImGui::SmallButton("remove");
             if (open) {

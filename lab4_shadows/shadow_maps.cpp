@@ -13,7 +13,6 @@ struct ShadowConstants {
     glm::vec4 transmittance;  // x: 1 − opacity
 };
 constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-const char* const kLightKinds[] = {"directional", "point", "spot"};  // LightDesc::Type's order
 // No map larger than this many texels in all (a cube: six faces): 1 GiB of 32-bit depth.
 constexpr double kMaxTexels = 268435456.0;
 
@@ -267,7 +266,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         if (in_map[i] && translucent_material(lighting, objects_[i].material)) translucent.push_back(objects_[i].box);
 
     // The panel's GPU time per map: "map: spot 1" (light 1), its transmittance map's beside it.
-    const std::string pass = std::string("map: ") + kLightKinds[int(light.type)] + " " + std::to_string(map.light);
+    const std::string pass = std::string("map: ") + lab::light_type_name(light.type) + " " + std::to_string(map.light);
     const std::string translucent_pass = "translucent " + pass;
     for (uint32_t face = 0; face < map.depth.layers(); ++face) {
         const glm::dmat4 world_to_clip = f.world_to_clip(map.cube ? f.faces[face] : f.view_projection);

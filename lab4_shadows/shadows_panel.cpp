@@ -8,7 +8,6 @@
 #include <string>
 
 namespace {
-const char* const kTypes[] = {"directional", "point", "spot"};
 const char* const kFilters[] = {"nearest (manual compare)", "bilinear (comparison sampler)"};
 const int kResolutions[] = {1, 64, 128, 256, 512, 1024, 2048, 4096, 8192};
 }  // namespace
@@ -25,7 +24,7 @@ void shadows_panel(Lighting& l, float frame_ms, int renders, const std::string& 
     // The shadow-map view: one light's map (a point light's six faces) in the bottom right.
     const auto name = [&](int i) {
         return i < 0 || i >= int(l.lights.size()) ? std::string("none")
-                                                  : std::string(kTypes[int(l.lights[size_t(i)].type)]) + " " + std::to_string(i);
+                                                  : std::string(lab::light_type_name(l.lights[size_t(i)].type)) + " " + std::to_string(i);
     };
     if (ImGui::BeginCombo("shadow-map view", name(l.shadow_view).c_str())) {
         for (int i = -1; i < int(l.lights.size()); ++i)  // none, then the lights that cast shadows
@@ -38,7 +37,7 @@ void shadows_panel(Lighting& l, float frame_ms, int renders, const std::string& 
         ImGui::PushID(int(i));
         ImGui::Checkbox("##casts", &light.cast_shadows);
         ImGui::SameLine();
-        if (ImGui::TreeNode("light", "%s %zu casts shadows", kTypes[int(light.type)], i)) {
+        if (ImGui::TreeNode("light", "%s %zu casts shadows", lab::light_type_name(light.type), i)) {
             lab::ShadowDesc& s = light.shadow;
             if (ImGui::BeginCombo("resolution", std::to_string(s.resolution).c_str())) {
                 for (int r : kResolutions)

@@ -22,11 +22,18 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <system_error>
 
 namespace lab {
+
+namespace {
+const char* const kLightTypeNames[] = {"directional", "point", "spot"};  // LightDesc::Type's order
+}  // namespace
+
+const char* light_type_name(LightDesc::Type type) { return kLightTypeNames[int(type)]; }
 
 const std::vector<std::string>& primitive_mesh_names() {
     static const std::vector<std::string> names = {
@@ -376,7 +383,7 @@ ShadowDesc read_shadow(const Context& ctx, const json& value, const std::string&
 LightDesc read_light(const Context& ctx, const json& value, const std::string& path) {
     LightDesc l;
     Section s(ctx, value, path);
-    static const std::vector<std::string> types = {"directional", "point", "spot"};
+    static const std::vector<std::string> types(std::begin(kLightTypeNames), std::end(kLightTypeNames));
     const size_t type = s.choice(s.required("type"), "type", "light type", types);
     l.type = static_cast<LightDesc::Type>(type);
     // Each type reads only its own keys, so e.g. "inner_deg" on a point light

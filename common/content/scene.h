@@ -61,6 +61,10 @@ struct LightDesc {
     ShadowDesc shadow;
 };
 
+// A light type's name in the scene format ("directional", "point", "spot"): what panels and pass
+// names show, and what read_scene() accepts.
+const char* light_type_name(LightDesc::Type type);
+
 // Lab 3: how a texture is read (docs/scene-format.md, "sampler"). The default is the seed's:
 // bilinear, linear between mip levels, anisotropy 16 by the sampler, repeat.
 struct SamplerDesc {
