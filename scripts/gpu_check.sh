@@ -3,13 +3,17 @@
 #
 # It packs the build with ../shared/tools/gpu_bundle.sh and writes .gpu/check.sh. Then call the device tool:
 #     run(command="bash .gpu/check.sh", carry=[".gpu"])
-# check.sh prints the device and its texture precision limits, renders every lab headless with
-# --validate, runs `--benchmark 300`, times lab 4 animated from a cold GPU with and without the
-# benchmark's one-second warm-up (the GPU's clocks each second in clocks_per_second.txt), runs every GoogleTest program (the render tests against the
-# reference; the script tests need Python, CMake, Xvfb, which the GPU machine lacks), lab 4's
-# random-scene regressions, then its random scenes 7300..7699 (CTest runs 0..299) and the
-# translucent stacks 0..399. Logs and failing
-# tests' diff images come back under $OUT.
+# check.sh, on the GPU machine:
+#   - prints the device and its texture precision limits;
+#   - renders every lab headless with --validate and runs `--benchmark 300`;
+#   - times lab 4 animated from a cold GPU with and without the benchmark's one-second warm-up, the
+#     GPU's clocks each second in clocks_per_second.txt;
+#   - measures what the GPU's pixels cost (pixel_rate.txt): lab 1 at four picture sizes, and lab 4
+#     with one directional map holding no caster (cleared and stored only) at 2048² and 4096²;
+#   - runs every GoogleTest program (the render tests against the reference; the script tests need
+#     Python, CMake, Xvfb, which the GPU machine lacks), lab 4's random-scene regressions, then its
+#     random scenes 7300..7699 (CTest runs 0..299) and the translucent stacks 0..399.
+# Logs and failing tests' diff images come back under $OUT.
 set -euo pipefail
 # -h / --help: the comment at the top of this file, nothing run.
 case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
@@ -18,6 +22,29 @@ build=$(cd "${1:-build}" && pwd)
 bundle=${GPU_BUNDLE:-$root/../shared/tools/gpu_bundle.sh}
 [[ -f $bundle ]] || { echo "gpu_check: $bundle not found (the course's shared tools)" >&2; exit 2; }
 bash "$bundle" "$build" >/dev/null
+# Lab 4's scene with one shadow-casting light, the directional, and no caster: its map is only
+# cleared and stored. Texture paths made absolute (the file lives in .gpu/; the sources sit at the
+# same path on the GPU machine).
+for r in 2048 4096; do
+  python3 - "$root/scenes" "$r" > ".gpu/empty_map_$r.json" <<'PY'
+import json, os, sys
+root, resolution = sys.argv[1], int(sys.argv[2])
+scene = json.load(open(os.path.join(root, "lab4_shadows.json")))
+for i, light in enumerate(scene["lights"]):
+    light["cast_shadows"] = i == 0
+    if i == 0:
+        light.setdefault("shadow", {})["resolution"] = resolution
+for material in scene["materials"].values():
+    for key in ("albedo_map", "specular_map", "emissive_map"):
+        if key in material and not material[key].startswith("procedural:"):
+            material[key] = os.path.join(root, material[key])
+for obj in scene["objects"]:
+    obj["cast_shadows"] = False
+    if obj["mesh"].endswith(".obj") or "/" in obj["mesh"]:
+        obj["mesh"] = os.path.join(root, obj["mesh"])
+json.dump(scene, sys.stdout, indent=1)
+PY
+done
 cat > .gpu/check.sh <<RUN
 #!/bin/bash
 set -u
@@ -49,6 +76,14 @@ for r in 1 2; do for v in animated swlike layers; do
   [ \$v = layers ] && a+=(--scene $root/docs/images/lab4_shadows/scenes/translucent_layers.json)
   echo "lab4 \$v round \$r: \$($build/lab4_shadows/lab4_shadows "\${a[@]}" --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) ' | tr '\\n' ' ')"
 done; done | tee \$OUT/lab4_animated.txt
+# What the GPU's pixels cost (docs/performance.md, "27 Nov 2026, afternoon"): GPU time linear in
+# the pixels written means every pass is bound by writing them.
+for wh in 640x360 1280x720 2560x1440 5120x2880; do
+  echo "lab1 \$wh: \$($build/lab1_camera/lab1_camera --width \${wh%x*} --height \${wh#*x} --benchmark 300 2>&1 | grep -E '^gpu_passes ')"
+done | tee \$OUT/pixel_rate.txt
+for r in 2048 4096; do
+  echo "lab4 empty \${r}² map: \$($build/lab4_shadows/lab4_shadows --dev-animate-lights --scene \$G/empty_map_\$r.json --benchmark 300 2>&1 | grep -E '^gpu_passes ')"
+done | tee -a \$OUT/pixel_rate.txt
 # The GoogleTest programs, run directly (CTest and the libraries it needs would not fit the 64 MiB
 # the device tool carries), eight at a time; each program's log, and the failures in gtest.txt.
 ls $build/tests/test_* | grep -vE '\\.cmake\$|_tests\\.cmake' | while read -r t; do [ -x "\$t" ] && echo "\$t"; done |
@@ -72,4 +107,7 @@ rm -f \$OUT/stacks/lab4_random/*.json
 rm -f \$OUT/random/lab4_random/*.json
 RUN
 chmod +x .gpu/check.sh
+# The device tool carries at most 64 MiB; the build's test by-products (the grader's and the site's
+# copies, test_output/) can push the bundle past it.
+[ "$(du -sm .gpu | cut -f1)" -le 60 ] || echo "gpu_check: .gpu/ is $(du -sh .gpu | cut -f1), near the device tool's 64 MiB: delete $build/grader, $build/site-no-answers and $build/test_output (tests remake them) and run again" >&2
 echo "gpu_check: .gpu/ ready ($(du -sh .gpu | cut -f1)); now: run(command=\"bash .gpu/check.sh\", carry=[\".gpu\"])"
