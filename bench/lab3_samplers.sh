@@ -22,18 +22,15 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 median() { "$@" | sed -n 's/.*median_ms=\([0-9.]*\).*/\1/p'; }
-# "NAME (TYPE[; CPU model, LP_NUM_THREADS=N])" of the device EXE runs on (the name's `_` back to spaces).
+# "NAME (TYPE[; CPU model, LP_NUM_THREADS=N])" of the device EXE runs on: its benchmark line, read
+# as bench/tradeoff.py reads it (tradeoff_lib/device.py; it exits naming the problem when the line
+# names no device).
 device_of() {
-  local line name type
-  line=$("$1" --benchmark 1 --width 64 --height 36 | grep '^benchmark ')
-  name=$(sed -n 's/.* device=\([^ ]*\).*/\1/p' <<<"$line" | tr _ ' ')
-  type=$(sed -n 's/.* device_type=\([^ ]*\).*/\1/p' <<<"$line")
-  [ -n "$name" ] || { echo "lab3_samplers.sh: $1 names no device on its benchmark line (rebuild it)" >&2; exit 2; }
-  if [ "$type" = cpu ]; then
-    echo "$name ($type; $(sed -n 's/^model name[[:space:]]*: *//p' /proc/cpuinfo | head -1), LP_NUM_THREADS=$LP_NUM_THREADS)"
-  else
-    echo "$name ($type)"
-  fi
+  "$1" --benchmark 1 --width 64 --height 36 | grep '^benchmark ' | PYTHONPATH="$root/bench" python3 -c '
+import os, sys
+from tradeoff_lib import device
+fields = dict(kv.split("=", 1) for kv in sys.stdin.read().split() if "=" in kv)
+print(device.label(device.of_benchmark(fields, os.environ, device.read_cpu_model())))'
 }
 cpu_s() { /usr/bin/time -f "%U %S" "$@" 2>&1 >/dev/null | tail -1 | awk '{print $1 + $2}'; }
 # "WALL_MS/CPU_MS" for: EXE SCENE
