@@ -50,21 +50,27 @@ def slug(text):
     return kept.replace(" ", "-")
 
 
-def lines_outside_code(path):
-    """(line number, line) of the file outside fenced code blocks, with code spans blanked."""
+def outside_fences(lines):
+    """(line number, line) of Markdown lines outside fenced code blocks (CommonMark: a block
+    opened by ``` or ~~~ ends at a fence of the same character at least as long)."""
     fence = None
+    for number, line in enumerate(lines, 1):
+        line = line.rstrip("\n")
+        m = FENCE.match(line)
+        if fence:
+            if m and m.group(1)[0] == fence[0] and len(m.group(1)) >= len(fence):
+                fence = None
+            continue
+        if m:
+            fence = m.group(1)
+            continue
+        yield number, line
+
+
+def lines_outside_code(path):
+    """(line number, line) of the file outside fenced code blocks."""
     with open(path, encoding="utf-8") as f:
-        for number, line in enumerate(f, 1):
-            line = line.rstrip("\n")
-            m = FENCE.match(line)
-            if fence:
-                if m and m.group(1)[0] == fence[0] and len(m.group(1)) >= len(fence):
-                    fence = None
-                continue
-            if m:
-                fence = m.group(1)
-                continue
-            yield number, line
+        yield from outside_fences(f)
 
 
 _anchor_cache = {}

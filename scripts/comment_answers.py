@@ -19,6 +19,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_links import outside_fences  # noqa: E402 (beside this file)
+
 CODE = (".cpp", ".h", ".hpp", ".glsl", ".vert", ".frag", ".comp")
 HASH = (".sh", ".py", ".cmake", ".txt")
 IDENT = re.compile(r"\b[A-Za-z_][A-Za-z0-9_]*\b")
@@ -34,15 +37,8 @@ def split_code(path):
     with open(path, encoding="utf-8", errors="replace") as f:
         text = f.read()
     prose = []
-    if path.endswith(".md"):
-        fence = False
-        for n, line in enumerate(text.split("\n"), 1):
-            if re.match(r"^ {0,3}(```|~~~)", line):
-                fence = not fence
-                continue
-            if not fence:
-                prose.append((n, line))
-        return "", prose
+    if path.endswith(".md"):  # prose: every line outside fenced code (check_links.py's reading)
+        return "", list(outside_fences(text.split("\n")))
     code = []
     if path.endswith(HASH) or os.path.basename(path) == "CMakeLists.txt":
         for n, line in enumerate(text.split("\n"), 1):
