@@ -29,7 +29,6 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -148,14 +147,12 @@ int main(int argc, char** argv) {
                 app.request_redraw();
             }
         };
-        int renders_seen = 0;  // lab 4: the maps rendered before the last UI frame
         callbacks.ui = [&] {
             camera_panel(app, camera, controls, reloader);
             lighting_panel(lighting);
             const TranslucentLayers* layers = renderer->translucent_layers();  // lab 4: what the last frame's lists lost
-            const int renders = renderer->shadow_map_renders();                 // a new renderer counts from 0
-            shadows_panel(lighting, app.average_frame_ms(), std::max(renders - renders_seen, 0), layers ? layers->summary() : "");
-            renders_seen = renders;
+            shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_maps_rendered_last_frame(),
+                          layers ? layers->summary() : "");
             if (textures_panel(lighting, renderer->texture_warnings(), renderer->anisotropic_auto(), app.average_frame_ms()) ||
                 !renderer->shadows_match(lighting)) {  // lab 4: or other lights cast shadows, other resolutions
                 // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.

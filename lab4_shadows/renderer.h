@@ -34,6 +34,7 @@ public:
     // False when the lights casting shadows (or their resolutions) changed: rebuild the renderer.
     bool shadows_match(const Lighting& lighting) const { return shadow_maps_->matches(lighting); }
     int shadow_map_renders() const { return shadow_maps_->renders(); }
+    int shadow_maps_rendered_last_frame() const { return shadow_maps_->rendered_last(); }
     // Lab 4: before the target's render pass too: empties the translucent layers' lists (nothing
     // without translucent objects); a new frame size gets new lists first.
     void clear_translucent_layers(const lab::Frame& frame);

@@ -165,6 +165,7 @@ std::vector<float> ShadowMaps::key_of(const lab::LightDesc& light, const Lightin
 
 void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out, lab::PassTimer* timer) {
     *out = GpuShadows{};
+    rendered_last_ = 0;
     for (size_t slot = 0; slot < maps_.size(); ++slot) {
         Map& map = maps_[slot];
         const lab::LightDesc& light = lighting.lights[size_t(map.light)];
@@ -173,6 +174,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
             render(cmd, map, light, lighting, timer);
             map.key = std::move(key);
             ++renders_;
+            ++rendered_last_;
         }
         // Only the lookup's numbers: the map still holds what they describe.
         (*out)[slot] = map.gpu;

@@ -60,6 +60,7 @@ public:
     bool matches(const Lighting& lighting) const;
     int maps() const { return int(maps_.size()); }
     int renders() const { return renders_; }  // maps rendered so far (a cube counts once)
+    int rendered_last() const { return rendered_last_; }  // maps the last record() rendered
     // The shadow-map view (UI only): slot's map (a cube: its six faces) drawn by `view`; none for no map.
     void draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const;
 
@@ -94,4 +95,5 @@ private:
     Map stand_in_2d_, stand_in_cube_;  // 1×1, cleared: what unused slots' descriptors point at
     std::vector<int> layout_;  // layout_of() the lighting the maps were made for
     int renders_ = 0;
+    int rendered_last_ = 0;
 };
