@@ -59,7 +59,7 @@ std::string dev_usage(const std::string& program) {
            "  --dev-mip-view             labs 3 and 4: start with the mip-level view on (each\n"
            "                             textured pixel tinted by the mip level it reads)\n"
            "  --dev-warmup-ms N          --benchmark: warm up for at least N ms (default 1000)\n"
-           "                             before timing: an idle GPU's clock needs time to rise\n"
+           "                             before timing: an idle GPU's clock may need time to rise\n"
            "  --help-dev                 show this help and exit\n";
 }
 

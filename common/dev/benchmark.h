@@ -3,9 +3,10 @@
 // A frame time is the interval between two consecutive frames *finishing* on the GPU, with two
 // frames in flight as in a real loop: the throughput a program's frame rate shows. The warm-up is
 // left out: at least kWarmupFrames (pipeline compilation, caches) and at least `warmup_ms` of
-// frames (--dev-warmup-ms, default 1000). A GPU that has been idle runs at a low clock and raises it
-// only after some time under load: measured from a cold start, a short benchmark times the clock's
-// climb, not the program (docs/performance.md, "GPU time per pass"). The report is one machine-readable
+// frames (--dev-warmup-ms, default 1000). A GPU that has been idle may run at a low clock and raise
+// it only after some time under load, and a short benchmark from a cold start would then time the
+// clock's climb, not the program (the H200 lent here was at its top clock at once, lavapipe has no
+// such climb: docs/performance.md, "How the figures are measured"). The report is one machine-readable
 // line of key=value pairs for scripts and bench/:
 //   benchmark lab=… width=… height=… frames=… min_ms=… median_ms=… p95_ms=… mean_ms=… [target=window]
 //             device=… device_type=cpu|integrated|discrete|virtual|other
