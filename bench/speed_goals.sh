@@ -53,20 +53,15 @@ fi
 fixture="$tmp/fixture"
 cp -r "$build/shaders/lab2_lighting" "$fixture"
 glslangValidator -V --target-env vulkan1.1 -o "$fixture/lit.frag.spv" "$root/bench/fixtures/minimal_blinn_phong.frag" >/dev/null
-# Lab 4's default scene with no shadows; texture and model paths made absolute (the copy lives in $tmp).
-python3 - "$root/scenes/lab4_shadows.json" "$tmp/off.json" "$root/scenes" <<'PY'
-import json, os, sys
-scene = json.load(open(sys.argv[1]))
+# Lab 4's default scene with no shadows; texture and model paths made absolute (the copy lives in
+# $tmp) by tradeoff_lib's load_scene().
+PYTHONPATH="$root/bench" python3 - "$tmp/off.json" <<'PY'
+import json, sys
+from tradeoff_lib.scenes import load_scene
+scene = load_scene("lab4_shadows.json")
 for light in scene["lights"]:
     light["cast_shadows"] = False
-for m in scene["materials"].values():
-    for k in ("albedo_map", "specular_map", "emissive_map"):
-        if k in m and not m[k].startswith("procedural:"):
-            m[k] = os.path.join(sys.argv[3], m[k])
-for o in scene["objects"]:
-    if o["mesh"].endswith(".obj"):
-        o["mesh"] = os.path.join(sys.argv[3], o["mesh"])
-json.dump(scene, open(sys.argv[2], "w"))
+json.dump(scene, open(sys.argv[1], "w"))
 PY
 
 names=(lab1 lab2 lab3 lab4 lab4_off swlike ambient one_lab2 one_lab3 one_lab4 one_fixture)

@@ -23,25 +23,18 @@ bundle=${GPU_BUNDLE:-$root/../shared/tools/gpu_bundle.sh}
 [[ -f $bundle ]] || { echo "gpu_check: $bundle not found (the course's shared tools)" >&2; exit 2; }
 bash "$bundle" "$build" >/dev/null
 # Lab 4's scene with one shadow-casting light, the directional, and no caster: its map is only
-# cleared and stored. Texture paths made absolute (the file lives in .gpu/; the sources sit at the
-# same path on the GPU machine).
+# cleared and stored. Paths made absolute by tradeoff_lib's load_scene() (the file lives in .gpu/;
+# the sources sit at the same path on the GPU machine).
 for r in 2048 4096; do
-  python3 - "$root/scenes" "$r" > ".gpu/empty_map_$r.json" <<'PY'
-import json, os, sys
-root, resolution = sys.argv[1], int(sys.argv[2])
-scene = json.load(open(os.path.join(root, "lab4_shadows.json")))
+  PYTHONPATH="$root/bench" python3 - "$r" > ".gpu/empty_map_$r.json" <<'PY'
+import json, sys
+from tradeoff_lib.scenes import load_scene
+scene = load_scene("lab4_shadows.json")
 for i, light in enumerate(scene["lights"]):
     light["cast_shadows"] = i == 0
-    if i == 0:
-        light.setdefault("shadow", {})["resolution"] = resolution
-for material in scene["materials"].values():
-    for key in ("albedo_map", "specular_map", "emissive_map"):
-        if key in material and not material[key].startswith("procedural:"):
-            material[key] = os.path.join(root, material[key])
+scene["lights"][0].setdefault("shadow", {})["resolution"] = int(sys.argv[1])
 for obj in scene["objects"]:
     obj["cast_shadows"] = False
-    if obj["mesh"].endswith(".obj") or "/" in obj["mesh"]:
-        obj["mesh"] = os.path.join(root, obj["mesh"])
 json.dump(scene, sys.stdout, indent=1)
 PY
 done
