@@ -8,6 +8,7 @@
 #   - renders every lab headless with --validate and runs `--benchmark 300`;
 #   - times lab 4 animated from a cold GPU with and without the benchmark's one-second warm-up, the
 #     GPU's clocks each second in clocks_per_second.txt;
+#   - runs tests/gpu_passes.py on lab 4's every-map scene (where the machine has python3);
 #   - measures what the GPU's pixels cost (pixel_rate.txt): lab 1 at four picture sizes, and lab 4
 #     with one directional map holding no caster (cleared and stored only) at 2048² and 4096²;
 #   - runs every GoogleTest program (the render tests against the reference; the script tests need
@@ -48,7 +49,8 @@ for f in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/
   [ -f "\$f" ] && { export VK_DRIVER_FILES=\$f; break; }; done
 vi=/opt/labgpu/bin/vulkaninfo
 { \$vi --summary 2>&1 | grep -E "deviceName|driverInfo|apiVersion" | head -3
-  \$vi 2>&1 | grep -E "subTexelPrecisionBits|mipmapPrecisionBits|maxImageDimension2D" | head -3; } | tee \$OUT/device.txt
+  \$vi 2>&1 | grep -E "subTexelPrecisionBits|mipmapPrecisionBits|maxImageDimension2D" | head -3
+  \$vi 2>&1 | grep -E "^\s*(samplerAnisotropy|fillModeNonSolid|wideLines|depthClamp|depthBiasClamp|fragmentStoresAndAtomics|timestampComputeAndGraphics)\s*=" | sort -u; } | tee \$OUT/device.txt
 for lab in \$(ls -d $build/lab*_*/); do n=\$(basename "\$lab")
   "\$lab/\$n" --headless --validate --out \$OUT/\$n.png 2>&1 | tail -1; "\$lab/\$n" --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) '
 done | tee \$OUT/labs.txt
@@ -77,6 +79,10 @@ done | tee \$OUT/pixel_rate.txt
 for r in 2048 4096; do
   echo "lab4 empty \${r}² map: \$($build/lab4_shadows/lab4_shadows --dev-animate-lights --scene \$G/empty_map_\$r.json --benchmark 300 2>&1 | grep -E '^gpu_passes ')"
 done | tee -a \$OUT/pixel_rate.txt
+# tests/gpu_passes.py on this device (where python3 is there): per-pass times that cannot overlap,
+# whatever the GPU runs in parallel (common/dev/gpu_timer.h).
+if command -v python3 >/dev/null; then python3 $root/tests/gpu_passes.py $build/lab4_shadows/lab4_shadows lab4_maps 2>&1 | tail -3
+else echo "gpu_passes: no python3 on this machine: not run"; fi | tee \$OUT/gpu_passes.txt
 # The GoogleTest programs, run directly (CTest and the libraries it needs would not fit the 64 MiB
 # the device tool carries), eight at a time; each program's log, and the failures in gtest.txt.
 ls $build/tests/test_* | grep -vE '\\.cmake\$|_tests\\.cmake' | while read -r t; do [ -x "\$t" ] && echo "\$t"; done |
