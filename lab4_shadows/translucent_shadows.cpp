@@ -57,19 +57,33 @@ TranslucentShadows::TranslucentShadows(const lab::VulkanContext& vk, VkFormat de
         // whose transform mirrors is inside out, here as in the camera's pass and the
         // reference: docs/scene-format.md, "Negative scale".)
         const VkCullModeFlags back = cube ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
-        VkPipelineColorBlendAttachmentState rg{};  // the nearest face's 1 − α and depth
-        rg.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT;
-        VkPipelineColorBlendAttachmentState g{};  // the nearest face's depth into g
-        g.colorWriteMask = VK_COLOR_COMPONENT_G_BIT;
-        // r = r · (1 − α): src · 0 + dst · src (alpha: kept), into r only.
-        const VkPipelineColorBlendAttachmentState r{VK_TRUE, VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_SRC_COLOR, VK_BLEND_OP_ADD,
-                                                    VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
-                                                    VK_COLOR_COMPONENT_R_BIT};
+        // The peel compares a face's depth in one pass with the depth an earlier pass stored for the
+        // same face, so the pipelines must compute the same depth. The invariance rules (Vulkan spec,
+        // appendix "Invariance") guarantee that only for state whose change is *required* to have no
+        // side effects (Rule 2: attachment contents, scissor, write masks, clear values; Corollary 1:
+        // fragment generation is then invariant). Blend and depth-test parameters are only "strongly
+        // suggested", and their enables not listed at all. So all four pipelines share every state
+        // but the write masks: the same blend (r, g ×= the fragment's: src · 0 + dst · src, alpha
+        // kept) and the same depth test (LESS_OR_EQUAL); they differ in which channels they write
+        // and whether they write depth. Each layer's pass clears r = g = 1, so "×=" on a cleared
+        // texel stores the fragment's value exactly (1 · x = x).
+        VkPipelineColorBlendAttachmentState multiply{VK_TRUE, VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_SRC_COLOR, VK_BLEND_OP_ADD,
+                                                     VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD, 0};
+        const auto writing = [&](VkColorComponentFlags channels) {
+            multiply.colorWriteMask = channels;
+            return multiply;
+        };
+        const VkColorComponentFlags r = VK_COLOR_COMPONENT_R_BIT, g = VK_COLOR_COMPONENT_G_BIT;
         lab::PipelineBuilder builder = casters;
         builder.shaders(vertex_shader, fragment_shader).descriptor_set(previous_layout_).cull(back).depth_clamp(vk.enabled_features().depthClamp);
-        layer_[cube] = builder.color_blend(rg).depth(true, true).build(vk, pass_);
-        nearest_[cube] = builder.color_blend(g).depth(true, true).build(vk, pass_);
-        multiply_[cube] = builder.color_blend(r).depth(false, false).build(vk, pass_);
+        // The nearest face beyond the layer before: its depth into the scratch depth, nothing else.
+        depth_[cube] = builder.color_blend(writing(0)).depth(true, true, VK_COMPARE_OP_LESS_OR_EQUAL).build(vk, pass_);
+        // Then the fragments at exactly that depth (≤ what depth_ left): r = 1 − α, g = depth.
+        layer_[cube] = builder.color_blend(writing(r | g)).depth(true, false, VK_COMPARE_OP_LESS_OR_EQUAL).build(vk, pass_);
+        // The last layer: g alone, as layer_ …
+        nearest_[cube] = builder.color_blend(writing(g)).depth(true, false, VK_COMPARE_OP_LESS_OR_EQUAL).build(vk, pass_);
+        // … and, drawn before depth_ (the depth still the clear value 1), r ×= 1 − α of every face.
+        multiply_[cube] = builder.color_blend(writing(r)).depth(true, false, VK_COMPARE_OP_LESS_OR_EQUAL).build(vk, pass_);
     }
 }
 
@@ -136,9 +150,12 @@ void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bo
         map.transmittance.begin(cmd, layer, 1.0f, pass_area);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layer_[cube].layout, 0, 1, &map.previous[layer], 0,
                                 nullptr);
-        // Before the last layer: the nearest face beyond layer k − 1. The last: every face beyond it.
+        // Before the last layer: the nearest face beyond layer k − 1 (its depth, then its r and g).
+        // The last: r ×= every face beyond it (while the depth is still cleared), then the nearest's g.
         const bool last = k + 1 == K;
-        for (const auto* pipeline : {last ? &nearest_[cube] : &layer_[cube], last ? &multiply_[cube] : nullptr}) {
+        const std::array<const lab::PipelineBuilder::Result*, 3> draws = {last ? &multiply_[cube] : nullptr, &depth_[cube],
+                                                                          last ? &nearest_[cube] : &layer_[cube]};
+        for (const auto* pipeline : draws) {
             if (!pipeline) continue;
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
             draw_translucent(k);

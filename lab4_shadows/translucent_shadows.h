@@ -11,7 +11,9 @@
 // that lies in front of the point. K is the most faces a ray can cross: one per convex caster, two
 // per other (a torus), at most kMaxLayers; past K the last layer holds the product of every face
 // beyond the one before it, at the nearest one's depth (a receiver among those faces gets too
-// little light). Only scenes with translucent casters render these maps, and only where those
+// little light: the faces behind it count too). Two front faces at exactly the same depth in one
+// texel both count (r = the product), and g then holds depth² (< depth): the later layers take
+// them again, so what lies behind gets too little light, never too much. Only scenes with translucent casters render these maps, and only where those
 // casters are: the rest of the map keeps "nothing translucent" (r = g = 1), so a glass ball a tenth
 // of the map across costs about a hundredth of a full-map pass, per layer.
 #pragma once
@@ -49,17 +51,20 @@ public:
 
     // Face `face` of `map`: for each layer k, begins its pass over `area` (the texels its
     // translucent casters cover: covered_texels() in offscreen.h) and what the last render drew —
-    // r cleared to 1, g to depth 1 there, the rest kept — binds the pipeline(s) and the set that
-    // reads layer k − 1, and calls `draw_translucent(k)` (k goes into the push constants). Layers
-    // before the last: the nearest face beyond layer k − 1, its depth and 1 − α; the last: the
-    // nearest one's depth into g, then r ×= 1 − α of every face beyond layer k − 1. Nothing at all
-    // when `area` and what was drawn are both empty.
+    // r cleared to 1, g to depth 1 there, the rest kept — binds the set that reads layer k − 1 and,
+    // for each of its pipelines, calls `draw_translucent(k)` (k goes into the push constants). Layers
+    // before the last: the nearest face beyond layer k − 1 (its depth first, then its depth and
+    // 1 − α); the last: r ×= 1 − α of every face beyond layer k − 1, then the nearest one's depth
+    // into g. Nothing at all when `area` and what was drawn are both empty.
     void render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,
                 const std::function<void(uint32_t layer)>& draw_translucent) const;
 
-    // The push constants' z (translucent_shadow.frag): how much farther than layer k − 1 a face
-    // must be to be another face — 0 with 32-bit float layers (the same face gives the same depth
-    // bit for bit), a 16-bit float's rounding otherwise.
+    // The push constants' z (translucent_shadow.frag): how much farther (relative) than layer k − 1
+    // a face must be to be another face. 32-bit float layers: 0 — every peel pipeline differs from
+    // the one that stored layer k − 1 only in write masks, and the invariance rules require the same
+    // fragments, depth included, for those (Vulkan spec, appendix "Invariance", Rule 2 "Required"
+    // and Corollary 1; translucent_shadows.cpp); g = 1 · depth is exact. 16-bit: a half's rounding
+    // (at most 2⁻¹¹ relative), twice over.
     float peel_slack() const { return format_ == VK_FORMAT_R32G32_SFLOAT ? 0.0f : 1.0f / 1024.0f; }
 
     // How far (in depth) a receiver must lie behind the nearest translucent caster to be behind
@@ -78,7 +83,9 @@ private:
     lab::Handle<VkDescriptorSetLayout> previous_layout_;    // the layer before, read by the peel
     lab::Handle<VkSampler> texel_sampler_;                  // nearest: the peel reads its own texel
     lab::Image nothing_;                                    // 1×1, r = g = 1: what layer 0 "reads"
-    std::array<lab::PipelineBuilder::Result, 2> layer_;     // [cube]: g = the nearest face's depth, r = its 1 − α
-    std::array<lab::PipelineBuilder::Result, 2> nearest_;   // [cube]: the last layer: g = the nearest face's depth
-    std::array<lab::PipelineBuilder::Result, 2> multiply_;  // [cube]: the last layer: r ×= 1 − α
+    // [cube], all the same state but the write masks (see peel_slack()):
+    std::array<lab::PipelineBuilder::Result, 2> depth_;     // the nearest face's depth (scratch depth only)
+    std::array<lab::PipelineBuilder::Result, 2> layer_;     // at that depth: g = the nearest face's depth, r = its 1 − α
+    std::array<lab::PipelineBuilder::Result, 2> nearest_;   // the last layer: g = the nearest face's depth
+    std::array<lab::PipelineBuilder::Result, 2> multiply_;  // the last layer, before depth_: r ×= 1 − α of every face
 };

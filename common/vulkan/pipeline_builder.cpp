@@ -31,9 +31,10 @@ PipelineBuilder& PipelineBuilder::cull(VkCullModeFlags mode) {
     cull_ = mode;
     return *this;
 }
-PipelineBuilder& PipelineBuilder::depth(bool test, bool write) {
+PipelineBuilder& PipelineBuilder::depth(bool test, bool write, VkCompareOp compare) {
     depth_test_ = test;
     depth_write_ = write;
+    depth_compare_ = compare;
     return *this;
 }
 PipelineBuilder& PipelineBuilder::alpha_blend(bool enabled) {
@@ -130,7 +131,7 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = depth_test_;
     depth.depthWriteEnable = depth_write_;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    depth.depthCompareOp = depth_compare_;
 
     VkPipelineColorBlendAttachmentState blend_attachment{};
     blend_attachment.colorWriteMask =

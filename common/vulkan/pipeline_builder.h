@@ -31,7 +31,8 @@ public:
     PipelineBuilder& descriptor_set(VkDescriptorSetLayout layout);
     PipelineBuilder& push_constants(VkShaderStageFlags stages, uint32_t size);
     PipelineBuilder& cull(VkCullModeFlags mode);
-    PipelineBuilder& depth(bool test, bool write);
+    // `compare`: the depth test's operator (default LESS).
+    PipelineBuilder& depth(bool test, bool write, VkCompareOp compare = VK_COMPARE_OP_LESS);
     PipelineBuilder& alpha_blend(bool enabled);
     PipelineBuilder& topology(VkPrimitiveTopology topology);
     // Depth bias on, its constant and slope factors set per draw (vkCmdSetDepthBias).
@@ -64,6 +65,7 @@ private:
     VkCullModeFlags cull_ = VK_CULL_MODE_BACK_BIT;
     bool depth_test_ = true;
     bool depth_write_ = true;
+    VkCompareOp depth_compare_ = VK_COMPARE_OP_LESS;
     bool blend_ = false;
     bool depth_bias_ = false;
     bool depth_clamp_ = false;

@@ -13,7 +13,9 @@ layout(location = 0) in vec3 in_position;
 void main() {
     // precise: no fused multiply-adds that one pipeline's compile may use and another's not. The
     // peel (translucent_shadow.frag) compares a face's depth in one pass with what an earlier pass
-    // stored for the same face, so both must compute the same position, bit for bit.
+    // stored for the same face, so both must compute the same position, bit for bit. (Its
+    // pipelines differ only in write masks: TranslucentShadows::peel_slack().) Not `invariant
+    // gl_Position`: glslang puts it on a block member, which the validation layers reject.
     precise vec4 position = caster.light_mvp * vec4(in_position, 1.0);
     gl_Position = position;
 }

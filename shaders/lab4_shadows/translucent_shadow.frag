@@ -2,9 +2,12 @@
 // translucent_shadow.frag — lab 4: translucent casters in a light's transmittance map, drawn
 // with their front faces as the light sees them (a convex object counts once), one layer per
 // pass (translucent_shadows.cpp). The peel: the pass of layer k sees only the faces beyond layer
-// k − 1 — a face no farther than the one that layer holds was peeled off already. Among those the
-// depth test keeps the nearest: its depth into g and its 1 − α into r, or, in the last layer, the
-// nearest depth into g and, blended dst·src, r = Π(1 − α) of them all.
+// k − 1 — a face no farther than the one that layer holds was peeled off already. Among those a
+// depth-only draw finds the nearest, and a second draw (depth test ≤, blended dst · src into the
+// cleared r = g = 1) stores its 1 − α in r and its depth in g; in the last layer r = Π(1 − α) of them
+// all (drawn before the depth-only draw) and g the nearest depth. "No farther" is exact with 32-bit
+// layers (slack 0): every pass computes a face's depth the same way, bit for bit
+// (TranslucentShadows::peel_slack() says which invariance rule makes it so).
 
 layout(push_constant) uniform ShadowConstants {
     mat4 light_mvp;
