@@ -13,8 +13,10 @@ struct GpuStats {  // LayerStats (std430)
     uint32_t width;
     uint32_t overflow_pixels;
     uint32_t dropped;
-    uint32_t unused;
+    uint32_t pixels;
 };
+// heads_ holds three arrays of one uint per pixel: list heads, fragment counts, optical depths.
+constexpr VkDeviceSize kWordsPerPixel = 3;
 }  // namespace
 
 TranslucentLayers::TranslucentLayers(const lab::VulkanContext& vk, VkExtent2D extent, VkRenderPass render_pass,
@@ -61,9 +63,9 @@ TranslucentLayers::TranslucentLayers(const lab::VulkanContext& vk, VkExtent2D ex
 void TranslucentLayers::resize(VkExtent2D extent) {
     const VkDeviceSize pixels = VkDeviceSize(extent.width) * extent.height;
     const VkDeviceSize range = vk_.properties().limits.maxStorageBufferRange;  // the most one binding may see
-    if (pixels * sizeof(uint32_t) > range)
+    if (kWordsPerPixel * pixels * sizeof(uint32_t) > range)
         throw std::runtime_error("translucent objects in a " + std::to_string(extent.width) + "x" +
-                                 std::to_string(extent.height) + " frame: one list head per pixel needs more than the " +
+                                 std::to_string(extent.height) + " frame: three words per pixel need more than the " +
                                  std::to_string(range) + " bytes a storage buffer may hold on this device");
     extent_ = extent;
     // The pool: kNodesPerPixel nodes per pixel on average. A glass ball shows two layers where it is
@@ -73,7 +75,7 @@ void TranslucentLayers::resize(VkExtent2D extent) {
     pool_nodes_ = uint32_t(std::min<VkDeviceSize>(kNodesPerPixel * pixels, range / kNodeBytes));
     heads_ = lab::Buffer();  // the old ones first (the GPU is done with them): their memory is reused
     nodes_ = lab::Buffer();
-    heads_ = lab::Buffer::device_only(vk_, pixels * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    heads_ = lab::Buffer::device_only(vk_, kWordsPerPixel * pixels * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     nodes_ = lab::Buffer::device_only(vk_, pool_nodes_ * kNodeBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
@@ -84,7 +86,7 @@ std::vector<lab::DescriptorBinding> TranslucentLayers::bindings() {
 void TranslucentLayers::write_descriptors(VkDescriptorSet set, uint32_t slot) const {
     const VkDeviceSize pixels = VkDeviceSize(extent_.width) * extent_.height;
     lab::write_buffer_descriptor(vk_, set, kFirstBinding + 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, heads_.get(),
-                                 pixels * sizeof(uint32_t));
+                                 kWordsPerPixel * pixels * sizeof(uint32_t));
     lab::write_buffer_descriptor(vk_, set, kFirstBinding + 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nodes_.get(),
                                  pool_nodes_ * kNodeBytes);
     lab::write_buffer_descriptor(vk_, set, kFirstBinding + 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, counter_.get(),
@@ -104,7 +106,7 @@ void TranslucentLayers::clear(VkCommandBuffer cmd, uint32_t slot) {
     // The slot's previous frame has finished (its fence): its counts can be read, and the buffer
     // zeroed for this frame by the host (a host write before the submit is seen by the GPU).
     read_stats(slot);
-    *static_cast<GpuStats*>(stats_buffers_[slot].mapped()) = {extent_.width, 0, 0, 0};
+    *static_cast<GpuStats*>(stats_buffers_[slot].mapped()) = {extent_.width, 0, 0, extent_.width * extent_.height};
     pending_[slot] = true;
     last_slot_ = slot;
 
@@ -116,9 +118,12 @@ void TranslucentLayers::clear(VkCommandBuffer cmd, uint32_t slot) {
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                          VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1, &before, 0,
                          nullptr, 0, nullptr);
-    // Every list empty, no node taken. (The nodes themselves need no clearing: only the nodes a
-    // list reaches are read, and each was written this frame.)
-    vkCmdFillBuffer(cmd, heads_.get(), 0, VK_WHOLE_SIZE, kEmpty);
+    // Every list empty, every pixel's count and optical depth 0, no node taken. (The nodes
+    // themselves need no clearing: only the nodes a list reaches are read, and each was written
+    // this frame.)
+    const VkDeviceSize heads_bytes = VkDeviceSize(extent_.width) * extent_.height * sizeof(uint32_t);
+    vkCmdFillBuffer(cmd, heads_.get(), 0, heads_bytes, kEmpty);
+    vkCmdFillBuffer(cmd, heads_.get(), heads_bytes, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, counter_.get(), 0, VK_WHOLE_SIZE, 0);
     // The fills must land before the translucent draws' atomics read and write them.
     VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER};

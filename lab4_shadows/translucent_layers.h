@@ -14,9 +14,16 @@
 //     full-screen triangle, scissored to where the translucent objects are (resolve()), sorts each
 //     pixel's list by depth and blends the composed layers over the opaque picture
 //     (translucent_resolve.frag).
-// Two limits, both counted (stats()) and shown: the pool holds kNodesPerPixel nodes per pixel on
-// average (a fragment past its end is dropped), and a pixel composes its kMaxLayers nearest layers
-// (the farther ones are dropped). Only scenes with a translucent object make one of these.
+// Two limits, both counted (stats()) and shown (Shadows panel; headless: a warning, summary()):
+//  - a pixel composes its kMaxLayers nearest layers; the farther ones' colour is dropped (they lie
+//    behind K others), their (1 − α) is kept: what is behind them is dimmed by every layer;
+//  - the pool holds kNodesPerPixel nodes per pixel on average; a fragment past its end is not
+//    stored. Which fragments those are depends on the order the GPU runs them in, so a pixel that
+//    lost one shows none of its layers' colour, only their whole transmittance (every fragment
+//    counts it, stored or not): the same every run, never brighter than the exact picture. Which
+//    pixels lose one is not deterministic (the pool is shared by the frame; the resolve of one
+//    pixel cannot know another's, inside the pass): a frame that overflowed is counted.
+// Only scenes with a translucent object make one of these.
 #pragma once
 
 #include "buffer.h"
@@ -64,7 +71,6 @@ public:
     void collect();
 
     const Stats& stats() const { return stats_; }
-    uint32_t pool_nodes() const { return pool_nodes_; }
     // "translucent layers: up to K per pixel exact; N px over K, M fragments dropped (pool full)"
     std::string summary() const;
 
@@ -74,10 +80,10 @@ private:
     const lab::VulkanContext& vk_;
     VkExtent2D extent_{};
     uint32_t pool_nodes_ = 0;
-    lab::Buffer heads_;    // one uint per pixel: the first node of its list (device-only, as the two below)
+    lab::Buffer heads_;    // three uints per pixel: the first node of its list, its fragments, their optical depth (device-only, as the two below)
     lab::Buffer nodes_;    // the pool: 16-byte nodes
     lab::Buffer counter_;  // one uint: nodes taken so far this frame
-    std::vector<lab::Buffer> stats_buffers_;  // [frame slot] host-visible: width, overflow_pixels, dropped
+    std::vector<lab::Buffer> stats_buffers_;  // [frame slot] host-visible: width, overflow_pixels, dropped, pixels
     std::vector<bool> pending_;               // [frame slot]: written by a frame not read back yet
     uint32_t last_slot_ = 0;                  // the slot of the last frame cleared
     Stats stats_;

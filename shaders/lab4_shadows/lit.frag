@@ -137,19 +137,26 @@ void main() {
         if (lab_bad) color = vec3(1.0, 0.0, 1.0);
     }
 #ifdef TRANSLUCENT_LAYER
-    // Take the pool's next node; past its end the fragment is counted and lost (nothing else to do).
+    color = clamp(color, vec3(0.0), vec3(65504.0));  // the largest half: an overflowing colour stays bright
+    const uint color_ba = packHalf2x16(vec2(color.b, alpha));
+    // Every fragment, stored or not, counts in its pixel's fragment count and optical depth (the α
+    // the resolve would compose: the stored half): a pixel that loses one can tell, and still gets
+    // its layers' whole transmittance (translucent_resolve.frag).
+    const uint pixel = layer_pixel();
+    atomicAdd(heads[layer_stats.pixels + pixel], 1u);
+    atomicAdd(heads[2u * layer_stats.pixels + pixel], optical_depth(unpackHalf2x16(color_ba).y));
+    // Take the pool's next node; past its end the fragment is counted and lost.
     const uint node = atomicAdd(taken, 1u);
     if (node >= uint(nodes.length())) {
         atomicAdd(layer_stats.dropped, 1u);
         return;
     }
-    color = clamp(color, vec3(0.0), vec3(65504.0));  // the largest half: an overflowing colour stays bright
     nodes[node].color_rg = packHalf2x16(color.rg);
-    nodes[node].color_ba = packHalf2x16(vec2(color.b, alpha));
+    nodes[node].color_ba = color_ba;
     nodes[node].depth = gl_FragCoord.z;
     // Push it onto the pixel's list: the old head becomes its next. One atomic exchange, so two
     // fragments of the same pixel (two objects, two faces) never lose each other.
-    nodes[node].next = atomicExchange(heads[layer_pixel()], node);
+    nodes[node].next = atomicExchange(heads[pixel], node);
 #else
     out_color = vec4(color, alpha);
 #endif
