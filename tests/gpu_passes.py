@@ -10,10 +10,17 @@ CASE is one of:
              translucent caster gives each map a transmittance map: the gpu_passes line names
              exactly main_pass and each light's map and translucent map;
   window     the lab (lab 1) in a window under xvfb-run, validation on: main_pass and ui.
-Both: every time is finite and > 0; each pass is at most the passes' sum, which is at most the
-GPU span of the frame; the span is not absurd against the CPU frame time (at most twice the
-benchmark's median_ms: a tick-period or unit mistake is off by orders of magnitude). A device
-without timestamps prints no gpu_passes line: the test then fails, saying so.
+Both: every time is finite, each pass >= 0, the sum and the span > 0; each pass is at most the
+passes' sum, which is at most the GPU span of the frame; the span is not absurd against the CPU
+frame time (at most twice the benchmark's median_ms: a tick-period or unit mistake is off by orders
+of magnitude). A device without timestamps prints no gpu_passes line: the test then fails, saying so.
+
+Why those orderings hold on every device (check() says it again where it checks): every stamp is
+written at BOTTOM_OF_PIPE (common/dev/gpu_timer.cpp), and the spec's vkCmdWriteTimestamp latches
+the timer "when all previous commands have completed executing as far as the specified pipeline
+stage": all of them, for the last stage. A later stamp waits for a superset of what an earlier one
+waited for, so in each frame start_0 <= end_0 <= start_1 <= end_1 <= ... <= end_last: no pass is
+negative, no two overlap, and their sum is at most end_last - start_0, the span.
 """
 import json
 import math
@@ -77,10 +84,18 @@ def check(output, expected):
         fail(f"passes {sorted(passes)}, expected {sorted(expected)}", output)
     values = {k: float(v) for k, v in passes.items()}
     values["sum"], values["total"] = float(gpu["sum_ms"]), float(gpu["total_ms"])
+    # The spec orders each frame's stamps (this file's docstring): a pass is >= 0, not > 0 (on a
+    # GPU a pass may run beside the one before it and end as soon as that one does). The frame's
+    # span and the sum are > 0: every frame here draws (the least frame measured, lab 1's trivial
+    # one on an H200: 0.012 ms, docs/performance.md), above the 0.001 ms printed.
     for name, ms in values.items():
-        if not math.isfinite(ms) or ms <= 0.0:
-            fail(f"{name}: {ms} ms is not a finite time > 0", output)
-    rounding = 0.001  # each figure is printed to 0.001 ms
+        if not math.isfinite(ms) or ms < 0.0 or (name in ("sum", "total") and ms == 0.0):
+            fail(f"{name}: {ms} ms is not a finite time >= 0 (> 0 for the sum and the span)", output)
+    # Each frame: pass <= sum <= span (the docstring). The printed figures are medians over the
+    # timed frames; order statistics keep a frame-by-frame <= (the k-th smallest of the smaller
+    # values is at most the k-th of the larger), and every pass here is in every timed frame (lab 4's
+    # maps re-rendered each frame by --dev-animate-lights; the window's main pass and UI).
+    rounding = 0.001  # each figure is printed to 0.001 ms, and a float sum may round either way
     for name in passes:
         if values[name] > values["sum"] + rounding:
             fail(f"{name} ({values[name]} ms) is more than the passes' sum ({values['sum']} ms)", output)

@@ -278,6 +278,9 @@ void LabApp::gpu_times_ui() {
     const std::string label =
         (shown_gpu_ms_.empty() ? std::string("GPU: no frame timed yet") : "GPU " + format_ms(sum) + " ms/frame") + "###gpu passes";
     const bool open = ImGui::TreeNodeEx(label.c_str(), ImGuiTreeNodeFlags_None);
+    if (ImGui::IsItemHovered())  // what a pass's time is (gpu_timer.h): the passes never overlap
+        ImGui::SetTooltip("Each pass: from when all GPU work before it is done to when it is done too\n"
+                          "(the time it adds to the frame; the sum leaves out work between passes)");
     // The panel was sized to its first frame, before any pass was timed: refit its height when
     // the lines below change, or they would push the panel's own widgets out of sight.
     const size_t lines = open ? shown_gpu_ms_.size() : 0;

@@ -82,12 +82,20 @@ int GpuPassTimer::begin(VkCommandBuffer cmd, std::string_view name) {
     }
     const uint32_t pass = uint32_t(slot.names.size());
     slot.names.emplace_back(name);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.pool, 2 * pass);
+    // A timestamp is latched once every command before it has completed the stage it names. At
+    // TOP_OF_PIPE that is once they have *started*: a GPU still finishing the previous pass would
+    // stamp this one's start inside it, and the passes' times would overlap (their sum could pass
+    // the frame's span). At BOTTOM_OF_PIPE (every stage) it is once all earlier work is done, so
+    // the pass's time is what it adds to the frame after everything before it, and no two passes'
+    // times overlap. (A pass of ours may have begun earlier, overlapping the one before; that part
+    // is counted in the earlier pass's time.)
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.pool, 2 * pass);
     return int(pass);
 }
 
 void GpuPassTimer::end(VkCommandBuffer cmd, int pass) {
     if (!current_ || pass < 0) return;
+    // Once every command before it (the pass's own included) has completed.
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, current_->pool, 2 * uint32_t(pass) + 1);
 }
 

@@ -2,7 +2,10 @@
 // panel shows under the frame time and `--benchmark` prints as its `gpu_passes` line.
 //
 // One query pool per frame in flight. A frame's commands start by resetting its slot's pool; each
-// pass writes a timestamp when it begins (TOP_OF_PIPE) and one when it ends (BOTTOM_OF_PIPE). The
+// pass writes a timestamp where it begins and one where it ends, both at BOTTOM_OF_PIPE: each is
+// latched once all the commands before it have completed, so a pass's time runs from "all earlier
+// work done" to "it is done too" — the time it adds to the frame — and the passes' times never
+// overlap, on any device (their sum is at most the frame's span). The
 // results of a slot's frame are read only when the slot comes round again, after its fence has
 // signalled: reading never waits for the GPU. A device or queue without timestamps says so once;
 // then, or when the timer is off, nothing is recorded at all.
