@@ -11,14 +11,14 @@
 // map's texel borders, where float and double may round to different texels), on any GPU:
 //   * the envelope: the reference is also shaded with every lookup done the ways the Vulkan
 //     specification allows an implementation to differ (ref::SamplingVariant: texel coordinates
-//     kept to the device's subTexelPrecisionBits and moved by the rasteriser's vertex snapping to
-//     subPixelPrecisionBits, for nearest lookups too: a scaled or distorted lookup has texel
+//     kept to the lab's device's subTexelPrecisionBits and moved by the rasteriser's vertex snapping
+//     to its subPixelPrecisionBits, for nearest lookups too: a scaled or distorted lookup has texel
 //     borders the mask does not know of; λ anywhere in the bounds the specification puts
 //     on the approximated scale factor ρ); each pixel must lie within 2/255 of the interval those
 //     shadings span — every magnified pixel (reference λ ≤ 0), and at least 99 % of the minified
 //     ones (λ > 0: the GPU takes the LOD from differences across a 2×2 pixel quad, a finite
 //     difference one pixel wide, while the reference uses the exact derivative at the pixel centre).
-// and where the only device is lavapipe (CI's, which filters in float with exact weights), also
+// and where the lab's device is lavapipe (CI's, which filters in float with exact weights), also
 // against the exact lookup:
 //   * magnified: every pixel within 2/255; minified: at least 99 % within 2/255 (the rest: the quad
 //     LOD above, and mip levels blended with lavapipe's 4-bit mipmapPrecisionBits).
@@ -27,6 +27,7 @@
 #include "reference/cpu_texture.h"
 #include "image_io.h"
 #include "lab_render.h"
+#include "vk_context.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -75,43 +76,42 @@ struct Verdict {
     size_t outside_envelope_magnified = 0, outside_envelope_minified = 0;
 };
 
-// What the test needs to know of the Vulkan devices the lab may run on, asked of the driver.
+// What the test needs to know of the device the lab renders on, asked of the driver. The lab takes
+// the device lab::VulkanContext picks (common/vulkan/vk_context.cpp: a discrete GPU, else an
+// integrated one, else any device with Vulkan 1.1 and a graphics queue); a headless context made
+// here picks the same one, and its properties and features are read from the driver directly.
 struct DeviceFacts {
-    bool only_lavapipe = true;  // every device is Mesa's llvmpipe (exact float filtering)
-    bool only_cpu = true;       // every device is VK_PHYSICAL_DEVICE_TYPE_CPU (a CPU rasterizer)
-    int sub_texel_bits = 4;     // the fewest subTexelPrecisionBits of any device (4 = the spec's minimum)
-    int sub_pixel_bits = 4;     // the fewest subPixelPrecisionBits (vertex positions snap to 2^-bits pixel)
+    std::string name;
+    bool lavapipe = false;        // Mesa's llvmpipe (exact float filtering)
+    bool cpu = false;             // VK_PHYSICAL_DEVICE_TYPE_CPU (a CPU rasterizer)
+    bool sampler_anisotropy = false;  // the samplerAnisotropy feature
+    int sub_texel_bits = 4;       // subTexelPrecisionBits (4 = the spec's minimum)
+    int sub_pixel_bits = 4;       // subPixelPrecisionBits (vertex positions snap to 2^-bits pixel)
+    int messages = 0;             // validation messages while making the context
 };
 DeviceFacts device_facts() {
     DeviceFacts facts;
-    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.apiVersion = VK_API_VERSION_1_1;
-    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-    info.pApplicationInfo = &app;
-    VkInstance instance = VK_NULL_HANDLE;
-    if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return facts;
-    uint32_t count = 0;
-    vkEnumeratePhysicalDevices(instance, &count, nullptr);
-    std::vector<VkPhysicalDevice> devices(count);
-    vkEnumeratePhysicalDevices(instance, &count, devices.data());
-    int texel_bits = 64, pixel_bits = 64;
-    for (VkPhysicalDevice d : devices) {
+    lab::ContextOptions options;
+    options.validate = true;
+    options.message_count = &facts.messages;
+    {
+        const lab::VulkanContext vk(options);
         VkPhysicalDeviceProperties p;
-        vkGetPhysicalDeviceProperties(d, &p);
-        facts.only_lavapipe = facts.only_lavapipe && std::string(p.deviceName).rfind("llvmpipe", 0) == 0;
-        facts.only_cpu = facts.only_cpu && p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-        texel_bits = std::min(texel_bits, int(p.limits.subTexelPrecisionBits));
-        pixel_bits = std::min(pixel_bits, int(p.limits.subPixelPrecisionBits));
-    }
-    vkDestroyInstance(instance, nullptr);
-    if (!devices.empty()) {
-        facts.sub_texel_bits = std::max(texel_bits, 4);
-        facts.sub_pixel_bits = std::max(pixel_bits, 4);
+        vkGetPhysicalDeviceProperties(vk.physical_device(), &p);
+        VkPhysicalDeviceFeatures features;
+        vkGetPhysicalDeviceFeatures(vk.physical_device(), &features);
+        facts.name = p.deviceName;
+        facts.cpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+        facts.lavapipe = facts.cpu && facts.name.rfind("llvmpipe", 0) == 0;
+        facts.sampler_anisotropy = features.samplerAnisotropy == VK_TRUE;
+        facts.sub_texel_bits = std::max(int(p.limits.subTexelPrecisionBits), 4);
+        facts.sub_pixel_bits = std::max(int(p.limits.subPixelPrecisionBits), 4);
     }
     return facts;
 }
-const DeviceFacts& devices() {
+const DeviceFacts& lab_device() {
     static const DeviceFacts facts = device_facts();
+    EXPECT_EQ(facts.messages, 0) << "validation messages while asking for the lab's device";
     return facts;
 }
 
@@ -125,7 +125,7 @@ struct Envelope {
     std::vector<glm::ivec3> low, high;
 };
 Envelope sampling_envelope(const lab::Scene& scene, const ref::RefImage& reference) {
-    const double texel_step = std::ldexp(1.0, -devices().sub_texel_bits), pixel_step = std::ldexp(1.0, -devices().sub_pixel_bits);
+    const double texel_step = std::ldexp(1.0, -lab_device().sub_texel_bits), pixel_step = std::ldexp(1.0, -lab_device().sub_pixel_bits);
     std::vector<ref::ShadeFn> shaders;
     for (const double t : {-1.0, 0.0, 0.25, 0.5, 0.75, 1.0})
         for (const double su : {-1.0, 1.0})
@@ -215,7 +215,7 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
     EXPECT_GT(covered_pixels(reference), mask.size() / 10) << "test scene shows almost nothing";
     EXPECT_EQ(v.outside_envelope_magnified, 0u) << name << ": magnified pixels outside what the specification allows";
     EXPECT_LE(v.outside_envelope_minified, v.minified / 100) << name << ": minified pixels outside what the specification allows";
-    if (devices().only_lavapipe) {
+    if (lab_device().lavapipe) {
         EXPECT_EQ(v.magnified_bad, 0u) << name << ": magnified pixels beyond 2/255 (max " << v.magnified_max << ")";
         EXPECT_LE(v.minified_bad, v.minified / 100) << name << ": minified pixels beyond 2/255";
     }
@@ -224,7 +224,7 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
                 name.c_str(), v.magnified, v.magnified_max, v.outside_envelope_magnified, v.minified,
                 v.minified ? 100.0 * double(v.minified_bad) / double(v.minified) : 0.0,
                 v.minified ? 100.0 * double(v.outside_envelope_minified) / double(v.minified) : 0.0,
-                devices().only_lavapipe ? "" : " [not lavapipe: envelope only]");
+                lab_device().lavapipe ? "" : " [not lavapipe: envelope only]");
     if (::testing::Test::HasFailure()) ref::compare_and_report(actual, reference, kLab.path(name + "_diff.png"), options);
     return v;
 }
@@ -593,30 +593,27 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
     // than trilinear where the map is magnified (one probe there: n = 1 when the footprint is under a texel).
     for (int r : {kProbes2, kProbes3, kProbes4, kProbes8, kProbes16})
         EXPECT_LT(rows[r].minified, rows[kTrilinear].minified) << rows[r].name << " should beat trilinear on the far floor";
-    // Which anisotropic filter "auto" should pick depends on the device; the lab names its device
-    // kind on its "auto" line ("anisotropic: auto -> probes (CPU device)"). Each kind's pick must be
-    // within 0.25/255 of the other filter on the far floor, at a fraction of its cost there. On
-    // lavapipe (a CPU device: every texel read is paid, the sampler's anisotropy is one fixed slow
-    // filter) the probes 4 … 16 come within 0.25 of the sampler's anisotropy 16. On a GPU the
-    // texture unit filters anisotropically at the cost of about one lookup, n probes cost n: its
-    // anisotropy 16 must come within 0.25 of the probes 4 … 16 (an NVIDIA H200, 27 Nov 2026: 1.16
-    // against 1.51 / 1.13 / 1.05 for 4 / 8 / 16 probes). Auto must read exactly like its pick's row.
+    // Which anisotropic filter "auto" picks depends on the lab's device, read here from the driver
+    // (lab_device()): the probes on a CPU device or one without samplerAnisotropy, else the sampler's
+    // anisotropy. Auto must read exactly like its pick's row, and the lab must name that pick.
+    const bool probes_picked = lab_device().cpu || !lab_device().sampler_anisotropy;
     const std::string auto_log = read_text(kLab.path("truth_" + std::to_string(kAuto16) + ".log"));
-    const bool cpu_device = auto_log.find("anisotropic: auto -> probes (CPU device)") != std::string::npos;
-    ASSERT_TRUE(cpu_device || auto_log.find("anisotropic: auto -> the sampler's anisotropy") != std::string::npos)
-        << "the lab names no auto choice:\n" << auto_log;
-    if (devices().only_cpu) {
-        EXPECT_TRUE(cpu_device) << "every Vulkan device here is a CPU one:\n" << auto_log;
-    }
-    constexpr double kMargin = 0.25;
-    if (cpu_device) {
+    EXPECT_NE(auto_log.find(probes_picked ? "anisotropic: auto -> probes" : "anisotropic: auto -> the sampler's anisotropy"),
+              std::string::npos) << lab_device().name << ": the lab names another auto choice:\n" << auto_log;
+    EXPECT_EQ(rows[kAuto16].mean, rows[probes_picked ? kProbes16 : kAniso16].mean) << "auto on " << lab_device().name;
+    // What each kind of device measured on the far floor, asserted where it was measured:
+    //  * lavapipe: its sampler's anisotropy is one fixed filter (every degree 2.73/255); 4, 8 and 16
+    //    probes beat it (1.53 / 1.13 / 1.04, docs/performance.md).
+    //  * a GPU with the feature: an NVIDIA H200 (27 Nov 2026) filtered for real, anisotropy 16 at 1.16
+    //    against 1.51 / 1.13 / 1.05 for 4 / 8 / 16 probes: the sampler beats 4 probes (the default
+    //    scenes' count) but not 8 or 16, so only that is asserted. Auto picks the sampler on a GPU
+    //    for its cost (one lookup in the shader, n for n probes), which this test does not measure.
+    //  * another CPU device: not measured; only its auto pick is checked above.
+    if (lab_device().lavapipe) {
         for (int r : {kProbes4, kProbes8, kProbes16})
-            EXPECT_LE(rows[r].minified, rows[kAniso16].minified + kMargin) << rows[r].name << " vs the sampler's anisotropy 16, far floor";
-        EXPECT_EQ(rows[kAuto16].mean, rows[kProbes16].mean) << "auto should be the probes on a CPU device";
-    } else {
-        for (int r : {kProbes4, kProbes8, kProbes16})
-            EXPECT_LE(rows[kAniso16].minified, rows[r].minified + kMargin) << "a GPU's anisotropy 16 vs " << rows[r].name << ", far floor";
-        EXPECT_EQ(rows[kAuto16].mean, rows[kAniso16].mean) << "auto should be the sampler's anisotropy on a GPU";
+            EXPECT_LT(rows[r].minified, rows[kAniso16].minified) << rows[r].name << " vs lavapipe's anisotropy 16, far floor";
+    } else if (!lab_device().cpu && lab_device().sampler_anisotropy) {
+        EXPECT_LT(rows[kAniso16].minified, rows[kProbes4].minified) << lab_device().name << ": anisotropy 16 vs 4 probes, far floor";
     }
     for (int r : {kProbes2, kProbes3, kProbes4, kProbes8, kProbes16})
         EXPECT_LE(rows[r].magnified, rows[kTrilinear].magnified + 0.01) << rows[r].name << " should not blur the near floor";

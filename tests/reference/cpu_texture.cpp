@@ -194,7 +194,7 @@ glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::
     const auto shift = [&](int d) {
         const glm::dvec2 size(texture.levels[size_t(d)].width, texture.levels[size_t(d)].height);
         const glm::dvec2 footprint = (glm::abs(dx) + glm::abs(dy)) * size;  // texels per pixel, per axis
-        return variant.corner * (variant.texel_step + variant.pixel_step * glm::max(footprint, glm::dvec2(1.0)));
+        return variant.corner * (variant.texel_step + variant.pixel_step * footprint);
     };
     if (lambda <= 0.0 || q == 0) return sample_level(texture.levels[0], uv, desc.filter, desc.wrap, shift(0));
     if (desc.mipmaps == Mipmaps::Nearest) {

@@ -55,9 +55,10 @@ int wrap_texel(int i, int size, lab::SamplerDesc::Wrap wrap);
 //   * texel coordinates keep only VkPhysicalDeviceLimits::subTexelPrecisionBits fraction bits, so a
 //     bilinear weight, or the texel a nearest lookup picks, may be decided 2^-bits of a texel away;
 //   * the rasteriser snaps vertices to subPixelPrecisionBits, which moves the point a pixel's
-//     coordinates are interpolated at by up to 2^-bits of a pixel on each screen axis: in texels,
+//     coordinates are interpolated at by up to 2^-bits of a pixel on each screen axis (the move
+//     inside the triangle is the corners' moves interpolated, so no larger than theirs): in texels,
 //     2^-bits · (|∂u/∂x| + |∂u/∂y|) (u in texels; the lookup's own derivatives, so a scaled or
-//     distorted lookup moves as far as its footprint), taken as at least 2^-bits of a texel;
+//     distorted lookup moves as far as its footprint);
 //   * the scale factor ρ may be approximated by any f with, per screen axis,
 //         max(|∂u/∂x|, |∂v/∂x|) ≤ f_x ≤ √3·(|∂u/∂x| + |∂v/∂x|)   (u, v in texels)
 //     `lod_between` = t picks λ = (1 − t)·λ_low + t·λ_high inside that range; a negative value (the
