@@ -60,6 +60,14 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         translucent = translucent || lighting.materials[lit.material].opacity < 1.0f;
         casters.push_back({&it->second, lit.model, box, lit.material, object.cast_shadows, Lighting::convex(object)});
     }
+    // Lab 4: the layers' lists are written by fragment shaders, an optional feature
+    // (fragmentStoresAndAtomics). Without it translucent objects are drawn opaque, and the lab
+    // says so; their shadows (transmittance maps: colour attachments only) still let light through.
+    if (translucent && !vk.enabled_features().fragmentStoresAndAtomics) {
+        translucent = false;
+        std::fprintf(stderr, "warning: no fragmentStoresAndAtomics on this device: translucent objects are drawn "
+                             "opaque (their shadows still let light through)\n");
+    }
     shadow_maps_ = std::make_unique<ShadowMaps>(vk, std::move(casters), lighting, shader_dir);
     // Light markers: a cube per point light, a cone per spot and directional light.
     for (const auto& [key, mesh] : {std::pair<std::string, lab::Mesh>{"marker|cube", lab::make_cube()},

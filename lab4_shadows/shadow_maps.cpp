@@ -50,6 +50,17 @@ ShadowMaps::ShadowMaps(const lab::VulkanContext& vk, std::vector<Caster> objects
     const bool linear = format_supports(vk, depth_format_, depth_use | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
 
     depth_pass_ = make_offscreen_pass(vk, VK_FORMAT_UNDEFINED, depth_format_);
+    // Two optional features the maps use (README "Near and far", "Bias"): without them the maps
+    // are still drawn, and the lab says once what they lose.
+    const std::vector<int> casting = lighting.shadow_slots();
+    if (std::any_of(casting.begin(), casting.end(), [](int slot) { return slot >= 0; })) {
+        if (!vk.enabled_features().depthClamp)
+            std::fprintf(stderr, "warning: no depthClamp on this device: a caster nearer a light than its map's near "
+                                 "plane (far / 1000) casts no shadow\n");
+        if (!vk.enabled_features().depthBiasClamp)
+            std::fprintf(stderr, "warning: no depthBiasClamp on this device: the shadow maps' depth bias is not "
+                                 "bounded (a huge bias or an edge-on caster can lose its shadow)\n");
+    }
     nearest_sampler_ = make_depth_sampler(vk, false, false);
     compare_sampler_ = make_depth_sampler(vk, linear, true);
 

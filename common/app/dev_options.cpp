@@ -1,6 +1,9 @@
 #include "dev_options.h"
 
 #include "cli.h"
+#include "vk_context.h"
+
+#include <algorithm>
 
 namespace lab {
 
@@ -9,7 +12,7 @@ const std::vector<OptionSpec>& dev_option_specs() {
         {"dev-status-file", true}, {"dev-fail-after-submit", true}, {"dev-validation-probe", false},
         {"dev-no-blit", false},    {"dev-shader-dir", true},        {"dev-scene-dir", true},
         {"dev-animate-lights", false}, {"dev-shadow-view", true},   {"dev-mip-view", false},
-        {"dev-warmup-ms", true},
+        {"dev-warmup-ms", true}, {"dev-without-feature", true},
     };
     return specs;
 }
@@ -36,6 +39,14 @@ void set_dev_option(DevOptions& dev, const std::string& name, const std::string&
         dev.mip_view = true;
     } else if (name == "dev-warmup-ms") {
         dev.warmup_ms = int(parse_whole_number(option, value, 0, 600000));
+    } else if (name == "dev-without-feature") {
+        const std::vector<std::string>& known = fakeable_features();
+        if (std::find(known.begin(), known.end(), value) == known.end()) {
+            std::string list;
+            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+            throw CliError(option + ": unknown feature '" + value + "' (one of " + list + ")");
+        }
+        dev.without_features.push_back(value);
     }
 }
 
@@ -60,6 +71,10 @@ std::string dev_usage(const std::string& program) {
            "                             textured pixel tinted by the mip level it reads)\n"
            "  --dev-warmup-ms N          --benchmark: warm up for at least N ms (default 1000)\n"
            "                             before timing: an idle GPU's clock may need time to rise\n"
+           "  --dev-without-feature NAME act as a device without the optional feature NAME\n"
+           "                             (repeatable): fragmentStoresAndAtomics, samplerAnisotropy,\n"
+           "                             depthClamp, depthBiasClamp or timestamps; the lab takes\n"
+           "                             the path it takes on such a device\n"
            "  --help-dev                 show this help and exit\n";
 }
 

@@ -14,6 +14,7 @@ struct DevOptions {
     int fail_after_submit = 0;      // --dev-fail-after-submit N: throw after the Nth submit (0: off)
     bool validation_probe = false;  // --dev-validation-probe: commit one mistake per validation check
     bool no_blit = false;           // --dev-no-blit: act as a device without image blits
+    std::vector<std::string> without_features;  // --dev-without-feature NAME (repeatable): act as a device without it
     std::string shader_dir;         // --dev-shader-dir DIR: the compiled shaders from DIR
     std::string scene_dir;          // --dev-scene-dir DIR: the default scene from DIR
     bool animate_lights = false;    // --dev-animate-lights: lab 4's lights circle the Y axis

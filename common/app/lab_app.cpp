@@ -65,6 +65,7 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
     context.message_count = validation_messages;
     context.validation_probe = options.dev.validation_probe;
     context.no_blit = options.dev.no_blit;
+    context.without_features = options.dev.without_features;
     if (!options.headless) {
         window_ = std::make_unique<Window>(info.name, options.width, options.height);
         context.window = window_->handle();

@@ -33,15 +33,9 @@ std::string pass_key(std::string_view name) {
 }
 
 GpuPassTimer::GpuPassTimer(const VulkanContext& vk, bool on, bool keep_all) : vk_(vk), on_(on), keep_all_(keep_all) {
-    uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(vk.physical_device(), &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(vk.physical_device(), &count, families.data());
-    const double period = vk.properties().limits.timestampPeriod;
-    if (vk.queue_family() < count && period > 0.0) {
-        valid_bits_ = families[vk.queue_family()].timestampValidBits;
-        period_ns_ = period;
-    }
+    // 0 valid bits: the queue has no timestamps (or --dev-without-feature timestamps).
+    valid_bits_ = vk.timestamp_valid_bits();
+    period_ns_ = vk.properties().limits.timestampPeriod;
     if (!on_) return;
     if (!supported()) {
         std::fprintf(stderr, "GPU time: this device has no timestamps (%s)\n", vk.properties().deviceName);

@@ -28,7 +28,14 @@ struct ContextOptions {
     // Test hooks (--dev-validation-probe, --dev-no-blit: app/dev_options.h).
     bool validation_probe = false;  // with `validate`: commit one mistake per check the layer must report
     bool no_blit = false;           // format_properties() reports no format as a blit source or target
+    // --dev-without-feature: these optional features (names from fakeable_features()) count as
+    // unsupported, so the labs take the path a device without them takes.
+    std::vector<std::string> without_features;
 };
+
+// The optional features the labs use, by their Vulkan names (VkPhysicalDeviceFeatures'), plus
+// "timestamps" (the queue's timestampValidBits): what ContextOptions::without_features may name.
+const std::vector<std::string>& fakeable_features();
 
 class VulkanContext {
 public:
@@ -46,6 +53,8 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     // Optional features that are both supported and enabled (check before use).
     const VkPhysicalDeviceFeatures& enabled_features() const { return enabled_features_; }
+    // The queue family's timestampValidBits: 0 when it has no timestamps.
+    uint32_t timestamp_valid_bits() const { return timestamp_valid_bits_; }
 
     uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags wanted) const;
     // Device memory for buffers and images: ranges of a few large blocks (memory.h).
@@ -72,7 +81,7 @@ private:
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
     void create_instance(const ContextOptions& options);
     void pick_physical_device();
-    void create_device();
+    void create_device(const std::vector<std::string>& without_features);
     void provoke_validation_messages();  // test hook ContextOptions::validation_probe
 
     // The message counters first: the instance reports into them until it is destroyed.
@@ -94,6 +103,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     VkPhysicalDeviceFeatures enabled_features_{};
+    uint32_t timestamp_valid_bits_ = 0;
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     bool presenting_ = false;
     bool no_blit_ = false;
