@@ -1,0 +1,245 @@
+#!/usr/bin/env python3
+"""test_grading.py — scripts/grade.sh on a class of lab 1 submissions made from a fresh student copy
+(CTest: grading_lab1, label grading).
+
+Each submission is the copy with its regions filled in one way; the expected grade of every
+exercise follows from what was put where (isolated credit: an exercise is graded with the solution
+of every other one). Also checked: nothing outside the grader's output folder changed (a canary
+folder, the other submissions, the grader's own files), the run finished, every output exists,
+and regrading gives the same grades.csv byte for byte. Exit 77 (skip) without a working bubblewrap.
+"""
+import csv
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+import zipfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+LAB = "lab1_camera"
+EXERCISES = ["look_at", "transform", "projection", "mode_switch", "mvp"]
+CAMERA = "lab1_camera/camera.cpp"
+SHADER = "shaders/lab1_camera/unlit.vert"
+FILE_OF = {"look_at": CAMERA, "transform": CAMERA, "projection": CAMERA, "mode_switch": CAMERA, "mvp": SHADER}
+
+
+def skip(why):
+    print(f"grading_lab1: SKIPPED: {why}")
+    sys.exit(77)
+
+
+def fail(msg):
+    print(f"FAIL {msg}")
+    sys.exit(1)
+
+
+def region(lines, name):
+    marker = re.compile(r"// (TODO )?EXERCISE " + name + r": ")
+    start = next(i for i, l in enumerate(lines) if marker.search(l))
+    end = next(j for j in range(start + 1, len(lines)) if re.match(r"^[ \t]*// END EXERCISE[ \t]*$", lines[j]))
+    return start, end
+
+
+def solution(name):
+    lines = open(os.path.join(ROOT, FILE_OF[name])).read().splitlines(keepends=True)
+    s, e = region(lines, name)
+    return [l for l in lines[s + 1:e] if not re.match(r"^[ \t]*// STUB:", l)]
+
+
+def fill(sub, name, body):
+    """Replaces the region body of exercise name in submission folder sub."""
+    path = os.path.join(sub, FILE_OF[name])
+    lines = open(path).read().splitlines(keepends=True)
+    s, e = region(lines, name)
+    lines[s + 1:e] = body
+    open(path, "w").write("".join(lines))
+
+
+def tree_hash(path):
+    h = hashlib.sha256()
+    for base, dirs, files in sorted(os.walk(path)):
+        dirs.sort()
+        for f in sorted(files):
+            p = os.path.join(base, f)
+            h.update(os.path.relpath(p, path).encode())
+            if not os.path.islink(p):
+                h.update(open(p, "rb").read())
+    return h.hexdigest()
+
+
+def main():
+    if not shutil.which("bwrap"):
+        skip("bubblewrap (bwrap) missing: scripts/setup.sh installs it")
+    probe = ["bwrap", "--unshare-all", "--ro-bind", "/usr", "/usr", "--symlink", "usr/bin", "/bin",
+             "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64", "--proc", "/proc", "--", "/bin/true"]
+    if os.geteuid() == 0:
+        probe = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"] + probe
+    if subprocess.run(probe, capture_output=True).returncode != 0:
+        skip("bubblewrap cannot create its namespaces here (user namespaces disabled?)")
+    if os.path.exists(os.path.join(ROOT, ".student-copy")):
+        skip("this is a student copy: grading needs the instructors' repository")
+
+    tmp = tempfile.mkdtemp(prefix="grade-test-")
+    os.chmod(tmp, 0o755)
+    try:
+        run(tmp)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def run(tmp):
+    t0 = time.time()
+    copy = os.path.join(tmp, "copy")
+    subprocess.run(["bash", os.path.join(ROOT, "scripts/exercise.sh"), LAB, "--out", copy], check=True, capture_output=True)
+    subs = os.path.join(tmp, "submissions")
+    canary = os.path.join(tmp, "canary")
+    os.makedirs(subs)
+    os.makedirs(canary)
+    open(os.path.join(canary, "keep.txt"), "w").write("the grader's machine: nothing may change this\n")
+    os.chmod(canary, 0o777)  # writable by anyone: only the sandbox can keep the student's code out
+    os.chmod(os.path.join(canary, "keep.txt"), 0o666)
+
+    def make(name, solved=EXERCISES):
+        d = os.path.join(subs, name)
+        shutil.copytree(copy, d, symlinks=True)
+        for e in solved:
+            fill(d, e, solution(e))
+        return d
+
+    expected = {}  # student → (grades, notes that must appear)
+    make("solved")
+    expected["solved"] = ([1, 1, 1, 1, 1], [])
+    make("partial", ["look_at", "projection"])
+    expected["partial"] = ([1, 0, 1, 0, 0], [])
+    d = make("no_compile")
+    fill(d, "transform", ["    return this is not C++;\n"])
+    expected["no_compile"] = ([1, 0, 1, 1, 1], ["did not compile: transform"])
+    d = make("loop_cpp")
+    fill(d, "transform", ["    { volatile bool spin = true; while (spin) {} }\n"] + solution("transform"))
+    expected["loop_cpp"] = ([1, 0, 1, 1, 1], ["timed out: transform"])
+    d = make("loop_shader")
+    fill(d, "mvp", ["    float spin = 1.0;\n", "    while (spin > 0.0) { spin = spin + frame.projection[0][0] * 0.0 + 1.0; }\n"] +
+         solution("mvp"))
+    expected["loop_shader"] = ([1, 1, 1, 1, 0], [])
+    # Writes everywhere it can think of: the canary, another student's code, the grader, the
+    # repository's tests; and deletes with a shell. All inside look_at, which stays right.
+    d = make("escape")
+    other = os.path.join(subs, "solved", CAMERA)
+    targets = [os.path.join(canary, "keep.txt"), os.path.join(canary, "new.txt"), other,
+               os.path.join(ROOT, "scripts/grade/grade.py"), os.path.join(ROOT, "tests/graded_exercises.txt"), "/tmp/grade-escaped"]
+    attack = ["    {\n"] + [f"        if (FILE* f = std::fopen(\"{t}\", \"a\")) {{ std::fputs(\"pwned\\n\", f); std::fclose(f); }}\n" for t in targets] + \
+             [f"        if (std::system(\"rm -rf {canary} {os.path.join(subs, 'partial')}; echo pwned > {canary}/sh.txt\")) {{}}\n", "    }\n"]
+    fill(d, "look_at", attack + solution("look_at"))
+    expected["escape"] = ([1, 1, 1, 1, 1], [])
+    # Every check removed from the tests, the graded rows emptied, the exercises left stubbed.
+    d = make("tampered", [])
+    for f in ("tests/test_camera.cpp", "tests/test_lab1_render.cpp"):
+        open(os.path.join(d, f), "w").write("#include <gtest/gtest.h>\nTEST(LookAt, Passes) {}\n")
+    open(os.path.join(d, "tests/graded_exercises.txt"), "w").write("# nothing\n")
+    expected["tampered"] = ([0, 0, 0, 0, 0], ["changed outside the exercises (ignored): 3 file(s)"])
+    d = make("no_markers")
+    path = os.path.join(d, CAMERA)
+    lines = open(path).read().splitlines(keepends=True)
+    s, e = region(lines, "look_at")
+    del lines[e]
+    del lines[s]
+    open(path, "w").write("".join(lines))
+    expected["no_markers"] = ([0, 1, 1, 1, 1], ["markers deleted (not done): look_at"])
+    # Archives: a .tar.gz with the copy in one folder, a .zip with it at the top.
+    d = make("packed_tgz_src")
+    with tarfile.open(os.path.join(subs, "packed_tgz.tar.gz"), "w:gz") as t:
+        t.add(d, arcname="my-lab1")
+    shutil.rmtree(d)
+    expected["packed_tgz"] = ([1, 1, 1, 1, 1], [])
+    d = make("packed_zip_src", ["look_at", "transform", "projection"])
+    with zipfile.ZipFile(os.path.join(subs, "packed_zip.zip"), "w") as z:
+        for base, _, files in os.walk(d):
+            for f in files:
+                z.write(os.path.join(base, f), os.path.relpath(os.path.join(base, f), d))
+    shutil.rmtree(d)
+    expected["packed_zip"] = ([1, 1, 1, 0, 0], [])
+    os.makedirs(os.path.join(subs, "empty"))
+    expected["empty"] = ([0, 0, 0, 0, 0], ["empty"])
+    print(f"grading_lab1: {len(expected)} submissions written in {time.time() - t0:.0f} s")
+
+    before = {"canary": tree_hash(canary), "submissions": tree_hash(subs),
+              "grade.py": tree_hash(os.path.join(ROOT, "scripts/grade")),
+              "graded_exercises.txt": hashlib.sha256(open(os.path.join(ROOT, "tests/graded_exercises.txt"), "rb").read()).hexdigest()}
+    out = os.path.join(tmp, "out")
+    t1 = time.time()
+    r = subprocess.run(["bash", os.path.join(ROOT, "scripts/grade.sh"), "1", subs, "--out", out], capture_output=True, text=True)
+    took = time.time() - t1
+    sys.stdout.write(r.stderr[-6000:])
+    if r.returncode != 0:
+        fail(f"grade.sh exited {r.returncode}")
+    print(f"grading_lab1: graded {len(expected)} submissions in {took:.0f} s")
+    after = {"canary": tree_hash(canary), "submissions": tree_hash(subs),
+             "grade.py": tree_hash(os.path.join(ROOT, "scripts/grade")),
+             "graded_exercises.txt": hashlib.sha256(open(os.path.join(ROOT, "tests/graded_exercises.txt"), "rb").read()).hexdigest()}
+    problems = [f"{k} changed during grading" for k in before if before[k] != after[k]]
+    if os.path.exists("/tmp/grade-escaped"):
+        problems.append("/tmp/grade-escaped was written (the sandbox's /tmp is not private)")
+
+    with open(os.path.join(out, "grades.csv"), newline="") as f:
+        rows = list(csv.reader(f))
+    if rows[0] != ["student", *EXERCISES, "score", "notes"]:
+        problems.append(f"grades.csv header {rows[0]}")
+    got = {row[0]: row for row in rows[1:]}
+    if sorted(got) != sorted(expected) or [row[0] for row in rows[1:]] != sorted(expected):
+        problems.append(f"grades.csv students {list(got)} (expected, sorted: {sorted(expected)})")
+    for name, (grades, notes) in sorted(expected.items()):
+        row = got.get(name)
+        if not row:
+            continue
+        cells = [int(c) for c in row[1:1 + len(EXERCISES)]]
+        if cells != grades or int(row[-2]) != sum(grades):
+            problems.append(f"{name}: grades {cells} score {row[-2]}, expected {grades} ({sum(grades)}); notes: {row[-1]}")
+        for n in notes:
+            if n not in row[-1]:
+                problems.append(f"{name}: notes lack '{n}': {row[-1]}")
+        if name not in ("tampered",) and "changed outside" in row[-1]:
+            problems.append(f"{name}: notes say changed outside: {row[-1]}")
+        res = json.load(open(os.path.join(out, name, "results.json")))
+        if res["score"] != sum(grades) or [t["score"] for t in res["tests"]] != grades or \
+                any(set(t) < {"name", "score", "max_score", "output"} or not t["output"] for t in res["tests"]):
+            problems.append(f"{name}: results.json {json.dumps(res)[:300]}")
+        for t, g in zip(res["tests"], grades):
+            if not g and t["name"] not in t["output"]:
+                problems.append(f"{name}: the message for {t['name']} does not name it: {t['output'][:200]}")
+        if not os.path.isfile(os.path.join(out, name, "report.html")):
+            problems.append(f"{name}: no report.html")
+    index = open(os.path.join(out, "index.html")).read()
+    for name in expected:
+        if f'href="{name}/report.html"' not in index:
+            problems.append(f"index.html has no link to {name}'s report")
+    # a failing render test's picture reaches the report (mvp stubbed: Lab1Render.DefaultScene)
+    report = open(os.path.join(out, "partial", "report.html")).read()
+    pics = re.findall(r'<img src="([^"]+)"', report)
+    if not pics or not all(os.path.isfile(os.path.join(out, "partial", p)) for p in pics):
+        problems.append(f"partial/report.html: no expected|actual|difference picture ({pics})")
+    if "http://" in index or "https://" in index or "http" in report.replace("https://", "").split("<body>")[0]:
+        problems.append("the pages make external requests")
+
+    # the same folder again: the same grades.csv, byte for byte
+    out2 = os.path.join(tmp, "out2")
+    r2 = subprocess.run(["bash", os.path.join(ROOT, "scripts/grade.sh"), "1", subs, "--out", out2], capture_output=True, text=True)
+    if r2.returncode != 0:
+        problems.append(f"the regrade exited {r2.returncode}: {r2.stderr[-500:]}")
+    elif open(os.path.join(out, "grades.csv"), "rb").read() != open(os.path.join(out2, "grades.csv"), "rb").read():
+        problems.append("regrading gave a different grades.csv")
+    for p in problems:
+        print("FAIL", p)
+    if problems:
+        print(open(os.path.join(out, "grades.csv")).read())
+        sys.exit(1)
+    print(f"grading_lab1: every grade as expected, nothing outside changed, regrade identical ({time.time() - t0:.0f} s in all)")
+
+
+if __name__ == "__main__":
+    main()
