@@ -705,6 +705,7 @@ class Submission:
         self.region = {}     # exercise → "ok" | "missing" | "stub" | "solution"
         self.fatal = None
         self.kept = {}       # (exercise, test) → pictures next to the report
+        self.code = {}       # exercise → the student's region, as handed in
 
 
 def grade_submission(g, entry, name, outdir, progress):
@@ -717,7 +718,7 @@ def grade_submission(g, entry, name, outdir, progress):
             s.notes.append(why)
             for e in g.exercises:
                 s.grades[e["name"]] = 0
-                s.messages[e["name"]] = f"not graded: the submission is {why}" if why in ("empty",) else f"not graded: {why}"
+                s.messages[e["name"]] = f"`{e['name']}` not graded: the submission is {why}"
             return s
         if not os.path.isdir(os.path.join(root, g.lab)):
             s.notes.append(f"no {g.lab}/ folder in the submission")
@@ -737,6 +738,7 @@ def grade_submission(g, entry, name, outdir, progress):
             if body and not body[-1].endswith("\n"):
                 body[-1] += "\n"
             bodies[e["name"]] = body
+            s.code[e["name"]] = "".join(body)
             strip = lambda ls: [l.rstrip() for l in ls if l.strip()]
             s.region[e["name"]] = ("solution" if strip(body) == strip(e["solution"]) else
                                    "stub" if strip(body) == strip(e["stub"]) or strip(body) == strip(e["stub_lines"]) else "code")
@@ -917,6 +919,8 @@ def report_html(g, s):
         b.append(f"<div class=\"ex\"><h2><span class=\"badge {'p' if ok else 'f'}\">{ok}</span> {e_(n)} "
                  f"<span class=\"m\">{e_(e['file'])}:{e['line']}</span></h2>")
         b.append(f"<pre>{e_(s.messages.get(n, ''))}</pre>")
+        if n in s.code:
+            b.append(f"<details><summary>the student's code for {e_(n)}</summary><pre>{e_(s.code[n])}</pre></details>")
         r = s.isolated.get(n)
         if r and r.get("tests"):
             b.append("<table><tr><th>test</th><th>this exercise alone</th><th>as handed in</th></tr>")

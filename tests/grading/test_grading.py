@@ -124,8 +124,9 @@ def run(tmp):
     fill(d, "transform", ["    { volatile bool spin = true; while (spin) {} }\n"] + solution("transform"))
     expected["loop_cpp"] = ([1, 0, 1, 1, 1], ["timed out: transform"])
     d = make("loop_shader")
-    fill(d, "mvp", ["    float spin = 1.0;\n", "    while (spin > 0.0) { spin = spin + frame.projection[0][0] * 0.0 + 1.0; }\n"] +
-         solution("mvp"))
+    # endless for a perspective projection (its [3][3] is 0), which no compiler can know
+    fill(d, "mvp", ["    int spin = 0;\n", "    while (frame.projection[3][3] == 0.0 && spin >= 0) { spin = (spin + 1) & 0x3fffffff; }\n"] +
+         solution("mvp") + ["    if (spin == 12345) gl_Position = vec4(0.0);\n"])
     expected["loop_shader"] = ([1, 1, 1, 1, 0], [])
     # Writes everywhere it can think of: the canary, another student's code, the grader, the
     # repository's tests; and deletes with a shell. All inside look_at, which stays right.
@@ -133,7 +134,8 @@ def run(tmp):
     other = os.path.join(subs, "solved", CAMERA)
     targets = [os.path.join(canary, "keep.txt"), os.path.join(canary, "new.txt"), other,
                os.path.join(ROOT, "scripts/grade/grade.py"), os.path.join(ROOT, "tests/graded_exercises.txt"), "/tmp/grade-escaped"]
-    attack = ["    {\n"] + [f"        if (FILE* f = std::fopen(\"{t}\", \"a\")) {{ std::fputs(\"pwned\\n\", f); std::fclose(f); }}\n" for t in targets] + \
+    attack = ["    static bool once = false;\n", "    if (!once) {\n", "        once = true;\n"] + \
+             [f"        if (FILE* f = std::fopen(\"{t}\", \"a\")) {{ std::fputs(\"pwned\\n\", f); std::fclose(f); }}\n" for t in targets] + \
              [f"        if (std::system(\"rm -rf {canary} {os.path.join(subs, 'partial')}; echo pwned > {canary}/sh.txt\")) {{}}\n", "    }\n"]
     fill(d, "look_at", attack + solution("look_at"))
     expected["escape"] = ([1, 1, 1, 1, 1], [])
@@ -203,7 +205,7 @@ def run(tmp):
         for n in notes:
             if n not in row[-1]:
                 problems.append(f"{name}: notes lack '{n}': {row[-1]}")
-        if name not in ("tampered",) and "changed outside" in row[-1]:
+        if name not in ("tampered", "no_markers") and "changed outside" in row[-1]:
             problems.append(f"{name}: notes say changed outside: {row[-1]}")
         res = json.load(open(os.path.join(out, name, "results.json")))
         if res["score"] != sum(grades) or [t["score"] for t in res["tests"]] != grades or \
