@@ -13,6 +13,8 @@
 #include "lab_runner.h"
 
 #include "image_io.h"
+#include "pipeline_builder.h"
+#include "vk_context.h"
 
 #include <gtest/gtest.h>
 
@@ -183,6 +185,85 @@ TEST(MissingFeatures, AnUnknownFeatureIsBadInput) {
     EXPECT_NE(r.log.find("--dev-without-feature: unknown feature 'wideLines' (one of fragmentStoresAndAtomics, "),
               std::string::npos)
         << r.log;
+}
+
+// --- limits: a device at the specification's least ------------------------------------------
+// `--dev-minimum-limits` lowers the device's limits to the table "Required Limits" of the Vulkan
+// specification (lab::minimum_limits). Every descriptor set layout is checked against them before
+// Vulkan sees it (lab::descriptor_limit_problem): a set past them is refused with one line.
+
+VkPhysicalDeviceLimits spec_minimums() {
+    VkPhysicalDeviceLimits generous{};
+    generous.maxImageDimension2D = generous.maxImageDimensionCube = 1u << 15;
+    generous.maxFramebufferWidth = generous.maxFramebufferHeight = 1u << 15;
+    generous.maxUniformBufferRange = generous.maxStorageBufferRange = UINT32_MAX;
+    generous.maxPushConstantsSize = generous.maxBoundDescriptorSets = generous.maxColorAttachments = 1000;
+    generous.maxPerStageDescriptorSamplers = generous.maxPerStageDescriptorUniformBuffers = 1000;
+    generous.maxPerStageDescriptorStorageBuffers = generous.maxPerStageDescriptorSampledImages = 1000;
+    generous.maxPerStageResources = generous.maxDescriptorSetSamplers = generous.maxDescriptorSetUniformBuffers = 1000;
+    generous.maxDescriptorSetStorageBuffers = generous.maxDescriptorSetSampledImages = 1000;
+    generous.maxSamplerAnisotropy = 64.0f;
+    return lab::minimum_limits(generous);
+}
+
+// The numbers by hand from the specification's table: 16 samplers and 16 sampled images, 12
+// uniform buffers and 4 storage buffers per stage; 96 samplers in a set.
+TEST(MinimumLimits, DescriptorCountsAreCheckedPerStageAndPerSet) {
+    const VkPhysicalDeviceLimits limits = spec_minimums();
+    EXPECT_EQ(limits.maxPerStageDescriptorSamplers, 16u);
+    EXPECT_EQ(limits.maxDescriptorSetSamplers, 96u);
+    EXPECT_EQ(limits.maxImageDimension2D, 4096u);
+    EXPECT_EQ(limits.maxStorageBufferRange, 1u << 27);
+    const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT, vs = VK_SHADER_STAGE_VERTEX_BIT;
+    using B = lab::DescriptorBinding;
+    const B ubo{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, vs | fs};
+    // 16 combined image samplers in the fragment stage fit exactly; the 17th is one too many.
+    EXPECT_EQ(lab::descriptor_limit_problem(limits, {ubo, B{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, 16}}), "");
+    EXPECT_EQ(lab::descriptor_limit_problem(limits, {ubo, B{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, 15},
+                                                     B{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, 2}}),
+              "a descriptor set needs 17 samplers in the fragment stage; this device allows 16 "
+              "(maxPerStageDescriptorSamplers)");
+    // Stages count apart: 16 in each of two stages fit.
+    EXPECT_EQ(lab::descriptor_limit_problem(limits, {B{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, vs, 16},
+                                                     B{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, 16}}),
+              "");
+    // Five storage buffers in the vertex stage: the fifth is over 4.
+    EXPECT_EQ(lab::descriptor_limit_problem(limits, {B{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, vs, 5}}),
+              "a descriptor set needs 5 storage buffers in the vertex stage; this device allows 4 "
+              "(maxPerStageDescriptorStorageBuffers)");
+    // The per-set limit on its own: per-stage limits raised, 97 samplers over two stages.
+    VkPhysicalDeviceLimits wide = limits;
+    wide.maxPerStageDescriptorSamplers = wide.maxPerStageDescriptorSampledImages = wide.maxPerStageResources = 1000;
+    EXPECT_EQ(lab::descriptor_limit_problem(wide, {B{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, vs, 48},
+                                                   B{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, 49}}),
+              "a descriptor set needs 97 samplers in one set; this device allows 96 (maxDescriptorSetSamplers)");
+}
+
+// Labs 1-3 fit the least limits and render; lab 4's shared set (ShadowMaps::bindings(): the
+// arrays of flat and cube depth and transmittance maps, 24 samplers) does not: one line naming the limit, exit 1 (a device that
+// cannot run it), no picture.
+TEST(MinimumLimits, LabsOneToThreeRenderAndLabFourSaysWhichLimitItPasses) {
+    for (const LabExe& lab : kLabs) {
+        const std::string name = std::string(lab.name) + "_minimum_limits";
+        const std::string png = kOutDir + "/" + name + ".png";
+        std::remove(png.c_str());
+        const RunResult r = run_case(lab.path, "--headless --validate --width 160 --height 90 --dev-minimum-limits --out " +
+                                                   quoted(png), name);
+        if (std::string(lab.name) != "lab4_shadows") {
+            EXPECT_EQ(r.exit_code, 0) << lab.name << ":\n" << r.log;
+            EXPECT_TRUE(std::filesystem::exists(png)) << lab.name;
+        } else {
+            EXPECT_EQ(r.exit_code, 1) << r.log;
+            EXPECT_EQ(count(r.log, "\n"), 1u) << r.log;
+            EXPECT_NE(r.log.find("lab4_shadows: error: a descriptor set needs "), std::string::npos) << r.log;
+            EXPECT_NE(r.log.find("this device allows 16 (maxPerStageDescriptorSamplers)"), std::string::npos) << r.log;
+            EXPECT_FALSE(std::filesystem::exists(png)) << "nothing half-written";
+        }
+    }
+    // The picture's size is checked against the lowered limits too: 4096 is the least maxImageDimension2D.
+    const RunResult wide = run_case(LAB1_EXE, "--headless --dev-minimum-limits --width 4097 --height 90", "minimum_limits_width");
+    EXPECT_EQ(wide.exit_code, 2) << wide.log;
+    EXPECT_NE(wide.log.find("--width 4097: the device allows at most 4096"), std::string::npos) << wide.log;
 }
 
 }  // namespace

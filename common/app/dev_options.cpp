@@ -12,7 +12,7 @@ const std::vector<OptionSpec>& dev_option_specs() {
         {"dev-status-file", true}, {"dev-fail-after-submit", true}, {"dev-validation-probe", false},
         {"dev-no-blit", false},    {"dev-shader-dir", true},        {"dev-scene-dir", true},
         {"dev-animate-lights", false}, {"dev-shadow-view", true},   {"dev-mip-view", false},
-        {"dev-warmup-ms", true}, {"dev-without-feature", true},
+        {"dev-warmup-ms", true}, {"dev-without-feature", true}, {"dev-minimum-limits", false},
     };
     return specs;
 }
@@ -39,6 +39,8 @@ void set_dev_option(DevOptions& dev, const std::string& name, const std::string&
         dev.mip_view = true;
     } else if (name == "dev-warmup-ms") {
         dev.warmup_ms = int(parse_whole_number(option, value, 0, 600000));
+    } else if (name == "dev-minimum-limits") {
+        dev.minimum_limits = true;
     } else if (name == "dev-without-feature") {
         const std::vector<std::string>& known = fakeable_features();
         if (std::find(known.begin(), known.end(), value) == known.end()) {
@@ -75,6 +77,8 @@ std::string dev_usage(const std::string& program) {
            "                             (repeatable): fragmentStoresAndAtomics, samplerAnisotropy,\n"
            "                             depthClamp, depthBiasClamp or timestamps; the lab takes\n"
            "                             the path it takes on such a device\n"
+           "  --dev-minimum-limits       act as a device whose limits are the least the Vulkan\n"
+           "                             specification allows (image, buffer and descriptor counts)\n"
            "  --help-dev                 show this help and exit\n";
 }
 

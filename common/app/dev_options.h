@@ -15,6 +15,7 @@ struct DevOptions {
     bool validation_probe = false;  // --dev-validation-probe: commit one mistake per validation check
     bool no_blit = false;           // --dev-no-blit: act as a device without image blits
     std::vector<std::string> without_features;  // --dev-without-feature NAME (repeatable): act as a device without it
+    bool minimum_limits = false;    // --dev-minimum-limits: act as a device at the spec's least limits
     std::string shader_dir;         // --dev-shader-dir DIR: the compiled shaders from DIR
     std::string scene_dir;          // --dev-scene-dir DIR: the default scene from DIR
     bool animate_lights = false;    // --dev-animate-lights: lab 4's lights circle the Y axis

@@ -66,6 +66,7 @@ LabApp::LabApp(const LabInfo& info, const Options& options, int* validation_mess
     context.validation_probe = options.dev.validation_probe;
     context.no_blit = options.dev.no_blit;
     context.without_features = options.dev.without_features;
+    context.minimum_limits = options.dev.minimum_limits;
     if (!options.headless) {
         window_ = std::make_unique<Window>(info.name, options.width, options.height);
         context.window = window_->handle();

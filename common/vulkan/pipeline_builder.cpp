@@ -1,6 +1,9 @@
 #include "pipeline_builder.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
 
 namespace lab {
 
@@ -175,8 +178,64 @@ PipelineBuilder::Result PipelineBuilder::build(const VulkanContext& vk, VkRender
     return result;
 }
 
+std::string descriptor_limit_problem(const VkPhysicalDeviceLimits& limits, const std::vector<DescriptorBinding>& bindings) {
+    // A combined image sampler counts as a sampler and as a sampled image (the spec's limits for
+    // both say so); every descriptor counts towards maxPerStageResources.
+    struct Count {
+        const char* what;
+        bool (*counts)(VkDescriptorType);
+        uint32_t per_stage, per_set;
+        const char *per_stage_name, *per_set_name;
+    };
+    const auto sampler = [](VkDescriptorType t) {
+        return t == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || t == VK_DESCRIPTOR_TYPE_SAMPLER;
+    };
+    const auto sampled = [](VkDescriptorType t) {
+        return t == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || t == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+    };
+    const auto uniform = [](VkDescriptorType t) { return t == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER; };
+    const auto storage = [](VkDescriptorType t) { return t == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER; };
+    const auto any = [](VkDescriptorType) { return true; };
+    const Count counts[] = {
+        {"samplers", sampler, limits.maxPerStageDescriptorSamplers, limits.maxDescriptorSetSamplers,
+         "maxPerStageDescriptorSamplers", "maxDescriptorSetSamplers"},
+        {"sampled images", sampled, limits.maxPerStageDescriptorSampledImages, limits.maxDescriptorSetSampledImages,
+         "maxPerStageDescriptorSampledImages", "maxDescriptorSetSampledImages"},
+        {"uniform buffers", uniform, limits.maxPerStageDescriptorUniformBuffers, limits.maxDescriptorSetUniformBuffers,
+         "maxPerStageDescriptorUniformBuffers", "maxDescriptorSetUniformBuffers"},
+        {"storage buffers", storage, limits.maxPerStageDescriptorStorageBuffers, limits.maxDescriptorSetStorageBuffers,
+         "maxPerStageDescriptorStorageBuffers", "maxDescriptorSetStorageBuffers"},
+        {"descriptors", any, limits.maxPerStageResources, UINT32_MAX, "maxPerStageResources", ""},
+    };
+    const std::pair<VkShaderStageFlagBits, const char*> stages[] = {{VK_SHADER_STAGE_VERTEX_BIT, "vertex"},
+                                                                     {VK_SHADER_STAGE_FRAGMENT_BIT, "fragment"}};
+    const auto too_many = [](const char* what, uint64_t needed, const std::string& where, uint32_t allowed,
+                             const char* limit) {
+        return "a descriptor set needs " + std::to_string(needed) + " " + what + where + "; this device allows " +
+               std::to_string(allowed) + " (" + limit + ")";
+    };
+    for (const Count& c : counts) {
+        uint64_t in_set = 0;
+        for (const DescriptorBinding& b : bindings)
+            if (c.counts(b.type)) in_set += b.count;
+        if (in_set > c.per_set) return too_many(c.what, in_set, " in one set", c.per_set, c.per_set_name);
+        for (const auto& [stage, name] : stages) {
+            uint64_t in_stage = 0;
+            for (const DescriptorBinding& b : bindings)
+                if (c.counts(b.type) && (b.stages & stage)) in_stage += b.count;
+            if (in_stage > c.per_stage)
+                return too_many(c.what, in_stage, std::string(" in the ") + name + " stage", c.per_stage, c.per_stage_name);
+        }
+    }
+    return "";
+}
+
 Handle<VkDescriptorSetLayout> make_descriptor_set_layout(const VulkanContext& vk,
                                                          const std::vector<DescriptorBinding>& bindings) {
+    // Checked here, before Vulkan sees it: a pipeline over a set past these limits is invalid use,
+    // which a device may answer with anything.
+    const std::string problem = descriptor_limit_problem(vk.properties().limits, bindings);
+    if (!problem.empty()) throw VulkanError(problem);
     std::vector<VkDescriptorSetLayoutBinding> vk_bindings;
     for (uint32_t i = 0; i < bindings.size(); ++i)
         vk_bindings.push_back({i, bindings[i].type, bindings[i].count, bindings[i].stages, nullptr});

@@ -9,6 +9,7 @@
 #include "mesh.h"
 #include "vk_context.h"
 
+#include <string>
 #include <vector>
 
 namespace lab {
@@ -82,8 +83,15 @@ struct DescriptorBinding {
     VkShaderStageFlags stages;
     uint32_t count = 1;  // an array of `count` descriptors
 };
+// Throws VulkanError (one line: which count, how many, the device's limit) when the set needs more
+// descriptors than the device's limits allow; a device must refuse such a layout in a pipeline.
 Handle<VkDescriptorSetLayout> make_descriptor_set_layout(const VulkanContext& vk,
                                                          const std::vector<DescriptorBinding>& bindings);
+// What make_descriptor_set_layout checks: "" when `bindings` fit `limits` as one set, else the
+// first count that does not ("… needs 24 samplers in the fragment stage; the device allows 16
+// (maxPerStageDescriptorSamplers)"). Per-stage limits apply to all the sets a pipeline uses
+// together; one set over them is already too many.
+std::string descriptor_limit_problem(const VkPhysicalDeviceLimits& limits, const std::vector<DescriptorBinding>& bindings);
 // A pool big enough for `max_sets` sets of the given bindings.
 Handle<VkDescriptorPool> make_descriptor_pool(const VulkanContext& vk, const std::vector<DescriptorBinding>& bindings,
                                               uint32_t max_sets);

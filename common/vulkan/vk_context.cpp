@@ -85,7 +85,7 @@ bool has_layer(const char* name) {
 }  // namespace
 
 VulkanContext::VulkanContext(const ContextOptions& options)
-    : external_count_(options.message_count), no_blit_(options.no_blit) {
+    : external_count_(options.message_count), no_blit_(options.no_blit), minimum_limits_(options.minimum_limits) {
     // Each object is a Handle member, declared in creation order: if a step throws, what was made
     // so far is destroyed in reverse order, as it is when the context goes.
     create_instance(options);
@@ -235,6 +235,7 @@ void VulkanContext::pick_physical_device() {
     if (!physical_) throw VulkanError("no Vulkan device can render" + std::string(presenting_ ? " and present" : "") +
                                       " (is mesa-vulkan-drivers installed?)" + skipped);
     vkGetPhysicalDeviceProperties(physical_, &properties_);
+    if (minimum_limits_) properties_.limits = minimum_limits(properties_.limits);
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 
     // The first depth format the device can use as a depth attachment.
@@ -248,6 +249,30 @@ void VulkanContext::pick_physical_device() {
         }
     }
     throw VulkanError("no supported depth format");
+}
+
+VkPhysicalDeviceLimits minimum_limits(VkPhysicalDeviceLimits limits) {
+    const auto at_most = [](uint32_t& value, uint32_t minimum) { value = std::min(value, minimum); };
+    at_most(limits.maxImageDimension2D, 4096);
+    at_most(limits.maxImageDimensionCube, 4096);
+    at_most(limits.maxFramebufferWidth, 4096);
+    at_most(limits.maxFramebufferHeight, 4096);
+    at_most(limits.maxUniformBufferRange, 16384);
+    at_most(limits.maxStorageBufferRange, 1u << 27);
+    at_most(limits.maxPushConstantsSize, 128);
+    at_most(limits.maxBoundDescriptorSets, 4);
+    at_most(limits.maxPerStageDescriptorSamplers, 16);
+    at_most(limits.maxPerStageDescriptorUniformBuffers, 12);
+    at_most(limits.maxPerStageDescriptorStorageBuffers, 4);
+    at_most(limits.maxPerStageDescriptorSampledImages, 16);
+    at_most(limits.maxPerStageResources, 128);
+    at_most(limits.maxDescriptorSetSamplers, 96);
+    at_most(limits.maxDescriptorSetUniformBuffers, 72);
+    at_most(limits.maxDescriptorSetStorageBuffers, 24);
+    at_most(limits.maxDescriptorSetSampledImages, 96);
+    at_most(limits.maxColorAttachments, 4);
+    limits.maxSamplerAnisotropy = std::min(limits.maxSamplerAnisotropy, 16.0f);
+    return limits;
 }
 
 const std::vector<std::string>& fakeable_features() {

@@ -31,7 +31,14 @@ struct ContextOptions {
     // --dev-without-feature: these optional features (names from fakeable_features()) count as
     // unsupported, so the labs take the path a device without them takes.
     std::vector<std::string> without_features;
+    // --dev-minimum-limits: the device's limits lowered to the least the specification requires
+    // (minimum_limits() below), so the labs take the path a device at those minimums takes.
+    bool minimum_limits = false;
 };
+
+// `limits` lowered, where they are higher, to the least the Vulkan specification requires of every
+// device (its table "Required Limits"): image, framebuffer and buffer sizes, and descriptor counts.
+VkPhysicalDeviceLimits minimum_limits(VkPhysicalDeviceLimits limits);
 
 // The optional features the labs use, by their Vulkan names (VkPhysicalDeviceFeatures'), plus
 // "timestamps" (the queue's timestampValidBits): what ContextOptions::without_features may name.
@@ -107,6 +114,7 @@ private:
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
     bool presenting_ = false;
     bool no_blit_ = false;
+    bool minimum_limits_ = false;
 };
 
 }  // namespace lab
