@@ -8,6 +8,8 @@
 #   - renders every lab headless with --validate and runs `--benchmark 300`;
 #   - times lab 4 animated from a cold GPU with and without the benchmark's one-second warm-up, the
 #     GPU's clocks each second in clocks_per_second.txt;
+#   - times each of lab 3's sampler settings (the rows of sampler_errors.md, which the render test
+#     writes there) at 1280x720: the GPU's time against error;
 #   - runs tests/gpu_passes.py on lab 4's every-map scene (where the machine has python3);
 #   - measures what the GPU's pixels cost (pixel_rate.txt): lab 1 at four picture sizes, and lab 4
 #     with one directional map holding no caster (cleared and stored only) at 2048² and 4096²;
@@ -88,6 +90,13 @@ else echo "gpu_passes: no python3 on this machine: not run"; fi | tee \$OUT/gpu_
 ls $build/tests/test_* | grep -vE '\\.cmake\$|_tests\\.cmake' | while read -r t; do [ -x "\$t" ] && echo "\$t"; done |
   xargs -P8 -I{} sh -c '"\$1" --gtest_brief=1 > \$OUT/gtest_\$(basename "\$1").log 2>&1; echo "\$(basename "\$1") rc=\$?"' _ {} | sort | tee \$OUT/gtest.txt
 grep -h -E '^\\[  (PASSED|FAILED) |^\\[  FAILED  \\]' \$OUT/gtest_*.log | sort | uniq -c | tee -a \$OUT/gtest.txt
+# Lab 3's sampler settings on this GPU: the error of each against the supersampled truth
+# (Lab3Filtering.AnisotropyLowersTheErrorAgainstTheGroundTruth wrote sampler_errors.md and each
+# row's scene, truth_N.json, in the order of its rows) and its GPU time at 1280x720: the GPU's front.
+cp $build/test_output/lab3/sampler_errors.md \$OUT/ 2>/dev/null
+for n in \$(ls $build/test_output/lab3/ | sed -n 's/^truth_\([0-9]*\)[.]json\$/\1/p' | sort -n); do
+  echo "truth_\$n \$($build/lab3_textures/lab3_textures --scene $build/test_output/lab3/truth_\$n.json --width 1280 --height 720 --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) ' | grep -oE '(median_ms|main_pass_ms)=[0-9.]+' | tr '\n' ' ')"
+done | tee \$OUT/lab3_sampler_times.txt
 $build/tests/lab4_random_scenes --seeds 7638,7678 > \$OUT/random_regressions.log 2>&1; tail -2 \$OUT/random_regressions.log
 find $build/test_output -name '*_diff.png' | tar czf \$OUT/diffs.tgz -T - 2>/dev/null
 [ -f \$OUT/smi.csv ] && { kill \$smi_pid 2>/dev/null; awk -F', ' '{ split(\$1, t, " "); s = substr(t[2], 1, 8); if (s != last) print s, \$2, \$3, \$4, \$5; last = s }' \$OUT/smi.csv > \$OUT/clocks_per_second.txt; rm \$OUT/smi.csv; }
