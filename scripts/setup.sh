@@ -29,6 +29,7 @@ packages=(
   graphviz                     # docs/architecture.md's picture of the layers (scripts/make_architecture.sh)
   python3-matplotlib python3-numpy  # bench/tradeoff.py: time-against-error plots
   chromium                     # the course site's browser test (site/check.mjs, CTest site_browser)
+  bubblewrap                   # scripts/grade.sh runs student code in its sandbox (bwrap)
 )
 # Node.js and npm build the course site (scripts/make_site.sh): Debian's, unless a node and an npm
 # are already installed (another nodejs package, such as NodeSource's, conflicts with Debian's npm).

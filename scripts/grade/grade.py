@@ -941,10 +941,13 @@ def report_html(g, s):
 
 
 def first_message(msg):
-    for l in msg.splitlines():
-        if l.startswith("[ exercise ]") or "does not compile" in l or "not done" in l or "Failure" in l:
-            return re.sub(r"\d+(\.\d+)?", "#", l.strip())[:160]
-    return msg.splitlines()[0][:160] if msg else ""
+    """The line of a message that says most (the hint's blame first), numbers as # to group alike ones."""
+    lines = msg.splitlines()
+    for want in ("[ exercise ]", "does not compile", "not done", "not graded", "Failure"):
+        for l in lines:
+            if want in l:
+                return re.sub(r"(?<![A-Za-z_])\d+(\.\d+)?", "#", l.strip())[:160]
+    return lines[0][:160] if lines else ""
 
 
 def index_html(g, subs):
