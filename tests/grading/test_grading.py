@@ -124,10 +124,14 @@ def run(tmp):
     fill(d, "transform", ["    { volatile bool spin = true; while (spin) {} }\n"] + solution("transform"))
     expected["loop_cpp"] = ([1, 0, 1, 1, 1], ["timed out: transform"])
     d = make("loop_shader")
-    # endless for a perspective projection (its [3][3] is 0), which no compiler can know
+    # Endless for a perspective projection (its [3][3] is 0), which no compiler can know. On
+    # lavapipe it ends all the same: llvmpipe caps a shader invocation's loop iterations (65535,
+    # docs/solutions.md), so the region is graded on what it then draws: the solution's picture.
+    # (On a GPU it would spin: the per-test wall-time limit, as loop_cpp shows, stops it.) What
+    # this case asserts: the run finishes, the other regions' credit is untouched.
     fill(d, "mvp", ["    int spin = 0;\n", "    while (frame.projection[3][3] == 0.0 && spin >= 0) { spin = (spin + 1) & 0x3fffffff; }\n"] +
          solution("mvp") + ["    if (spin == 12345) gl_Position = vec4(0.0);\n"])
-    expected["loop_shader"] = ([1, 1, 1, 1, 0], [])
+    expected["loop_shader"] = ([1, 1, 1, 1, 1], [])
     # Writes everywhere it can think of: the canary, another student's code, the grader, the
     # repository's tests; and deletes with a shell. All inside look_at, which stays right.
     d = make("escape")
