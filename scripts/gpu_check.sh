@@ -73,7 +73,7 @@ for r in 1 2; do for v in animated swlike layers; do
   [ \$v = layers ] && a+=(--scene $root/docs/images/lab4_shadows/scenes/translucent_layers.json)
   echo "lab4 \$v round \$r: \$($build/lab4_shadows/lab4_shadows "\${a[@]}" --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) ' | tr '\\n' ' ')"
 done; done | tee \$OUT/lab4_animated.txt
-# What the GPU's pixels cost (docs/performance.md, "27 Nov 2026, afternoon"): GPU time linear in
+# What the GPU's pixels cost (docs/performance.md, "Lab 4 on a GPU"): GPU time linear in
 # the pixels written means every pass is bound by writing them.
 for wh in 640x360 1280x720 2560x1440 5120x2880; do
   echo "lab1 \$wh: \$($build/lab1_camera/lab1_camera --width \${wh%x*} --height \${wh#*x} --benchmark 300 2>&1 | grep -E '^gpu_passes ')"

@@ -87,7 +87,7 @@ def check(output, expected):
     # The spec orders each frame's stamps (this file's docstring): a pass is >= 0, not > 0 (on a
     # GPU a pass may run beside the one before it and end as soon as that one does). The frame's
     # span and the sum are > 0: every frame here draws (the least frame measured, lab 1's trivial
-    # one on an H200: 0.012 ms, docs/performance.md), above the 0.001 ms printed.
+    # one on an H200: 0.012 ms, docs/performance-history.md), above the 0.001 ms printed.
     for name, ms in values.items():
         if not math.isfinite(ms) or ms < 0.0 or (name in ("sum", "total") and ms == 0.0):
             fail(f"{name}: {ms} ms is not a finite time >= 0 (> 0 for the sum and the span)", output)
