@@ -228,6 +228,8 @@ void VulkanContext::pick_physical_device() {
                 best_score = score;
                 physical_ = candidate;
                 queue_family_ = f;
+                // 0 when the queue has no timestamps (GPU time per pass: common/dev/gpu_timer.h).
+                timestamp_valid_bits_ = props.limits.timestampPeriod > 0.0f ? families[f].timestampValidBits : 0;
             }
             break;
         }
@@ -287,11 +289,6 @@ void VulkanContext::create_device(const std::vector<std::string>& without_featur
     // "Optional features"). --dev-without-feature takes features away here, before anything is enabled.
     VkPhysicalDeviceFeatures supported;
     vkGetPhysicalDeviceFeatures(physical_, &supported);
-    uint32_t family_count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &family_count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(family_count);
-    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &family_count, families.data());
-    timestamp_valid_bits_ = properties_.limits.timestampPeriod > 0.0f ? families[queue_family_].timestampValidBits : 0;
     const auto without = [&](const char* name) {
         return std::find(without_features.begin(), without_features.end(), name) != without_features.end();
     };
