@@ -90,9 +90,12 @@ else echo "gpu_passes: no python3 on this machine: not run"; fi | tee \$OUT/gpu_
 ls $build/tests/test_* | grep -vE '\\.cmake\$|_tests\\.cmake' | while read -r t; do [ -x "\$t" ] && echo "\$t"; done |
   xargs -P8 -I{} sh -c '"\$1" --gtest_brief=1 > \$OUT/gtest_\$(basename "\$1").log 2>&1; echo "\$(basename "\$1") rc=\$?"' _ {} | sort | tee \$OUT/gtest.txt
 grep -h -E '^\\[  (PASSED|FAILED) |^\\[  FAILED  \\]' \$OUT/gtest_*.log | sort | uniq -c | tee -a \$OUT/gtest.txt
+# The device tool brings back a limited number of files: the logs go back as one archive.
+(cd \$OUT && tar czf gtest_logs.tgz gtest_*.log && rm -f gtest_*.log)
 # Lab 3's sampler settings on this GPU: the error of each against the supersampled truth
 # (Lab3Filtering.AnisotropyLowersTheErrorAgainstTheGroundTruth wrote sampler_errors.md and each
 # row's scene, truth_N.json, in the order of its rows) and its GPU time at 1280x720: the GPU's front.
+# (this GPU's file: the GoogleTest programs above just wrote it)
 cp $build/test_output/lab3/sampler_errors.md \$OUT/ 2>/dev/null
 for n in \$(ls $build/test_output/lab3/ | sed -n 's/^truth_\([0-9]*\)[.]json\$/\1/p' | sort -n); do
   echo "truth_\$n \$($build/lab3_textures/lab3_textures --scene $build/test_output/lab3/truth_\$n.json --width 1280 --height 720 --benchmark 300 2>&1 | grep -E '^(benchmark|gpu_passes) ' | grep -oE '(median_ms|main_pass_ms)=[0-9.]+' | tr '\n' ' ')"
