@@ -112,8 +112,8 @@ void Camera::set_mode(Mode new_mode) {
     const glm::dvec3 r(c[0]), u(c[1]), back(c[2]), p(c[3]);
 
     if (new_mode == Mode::Transform) {
-        // Recover the angles of R = Ry(yaw)·Rx(pitch)·Rz(roll) from its columns.
-        // The back axis is R·(0,0,1) = (cos p·sin y, −sin p, cos p·cos y), so:
+        // Recover the angles of R, the rotation part of the Transform mode's C, from its columns:
+        // multiply out its back column R·(0,0,1) in yaw and pitch first.
         position = p;
         // EXERCISE mode_switch: the yaw_deg, pitch_deg, roll_deg that rebuild this pose in the Transform order: what does back tell about pitch and yaw, what is left of r once they are undone, what range do std::asin, std::atan2 cover? Read this lab's README "Switching without a jump". Wrong: pressing C makes the view jump, flip or lose its roll, above all looking down. Checked by ModeSwitch.*.
         // STUB: yaw_deg = pitch_deg = roll_deg = 0.0;  // the view jumps

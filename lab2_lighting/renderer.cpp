@@ -14,8 +14,8 @@ std::string mesh_key(const lab::ObjectDesc& object) {
            std::to_string(object.obj_material);
 }
 
-// Normals transform with the inverse transpose of the model matrix's 3×3 part, so a
-// non-uniform scale keeps them perpendicular to the surface. Computed in double; scaled so
+// Normals transform with the normal matrix, which keeps them perpendicular to the surface under
+// a non-uniform scale (the model's own 3×3 part does not). Computed in double; scaled so
 // its largest element is ±1 (only the direction matters: the shader renormalizes), which
 // keeps float magnitudes near 1 even for scales of 1e-6 or 1e6.
 void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {

@@ -40,7 +40,7 @@ private:
     // Per-object data of the lit pipeline (116 of the 128 bytes every GPU allows).
     struct LitConstants {
         glm::mat4 model;
-        glm::vec4 normal_matrix[3];  // columns of the inverse transpose of the model's 3×3
+        glm::vec4 normal_matrix[3];  // columns of the normal matrix (normal_matrix())
         uint32_t material;           // index into the material buffer
     };
     struct DrawItem {

@@ -38,7 +38,7 @@ struct Camera {
 
     static Camera from_scene(const lab::CameraDesc& desc);
 
-    // The camera-to-world matrix C: columns are right, up, back (= −forward) and the position.
+    // The camera-to-world matrix C: camera space → world space (it places the camera; view() inverts it).
     glm::dmat4 camera_to_world() const;
     glm::dmat4 view() const { return glm::inverse(camera_to_world()); }
     // Right-handed perspective, depth in [0, 1], Y flipped for Vulkan.

@@ -16,8 +16,8 @@ std::string mesh_key(const lab::ObjectDesc& object) {
            std::to_string(object.obj_material);
 }
 
-// Normals transform with the inverse transpose of the model matrix's 3×3 part, so a
-// non-uniform scale keeps them perpendicular to the surface. Computed in double; scaled so
+// Normals transform with the normal matrix, which keeps them perpendicular to the surface under
+// a non-uniform scale (the model's own 3×3 part does not). Computed in double; scaled so
 // its largest element is ±1 (only the direction matters: the shader renormalizes), which
 // keeps float magnitudes near 1 even for scales of 1e-6 or 1e6.
 void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
@@ -98,7 +98,7 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
 
 // Each map image is loaded and uploaded once per encoding, however many materials use it, with a
 // mip chain if any of them samples mipmaps. Albedo and emissive maps are colours (sRGB); a
-// specular map is data, a factor in [0, 1] (UNORM: byte / 255, see docs/lighting.md). A bad file
+// specular map is data, a factor in [0, 1] (see docs/lighting.md). A bad file
 // becomes the checkerboard and one warning line.
 void Renderer::load_textures(const Lighting& lighting) {
     using Encoding = TexelEncoding;

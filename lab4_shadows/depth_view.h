@@ -22,7 +22,7 @@ public:
 
     // Draws the layers of `target` (a depth image in DEPTH_STENCIL_READ_ONLY_OPTIMAL, e.g. a cube
     // map's six faces) as squares at the bottom centre of a frame of `extent`, three to a row, the
-    // first row on top. `perspective`: (a, b) of a perspective projection's depth d = a − b / z,
+    // first row on top. `perspective`: (a, b) of a perspective projection's depth (shadow_maps.cpp),
     // turned back into the distance z and spread from near (black) to far (white), else nearly
     // everything looks white; b = 0: the depth is shown as it is (orthographic).
     void draw(VkCommandBuffer cmd, const LayeredTarget& target, glm::vec2 perspective, VkExtent2D extent);

@@ -28,7 +28,7 @@ struct LightFrustum {
     std::array<glm::dmat4, 6> faces{};   // point
     double near_plane = 0.0, far_plane = 1.0;
     double texel = 1.0;
-    bool perspective = false, cube = false;  // spot, point: depth = a − b / distance along the axis
+    bool perspective = false, cube = false;  // spot, point: a perspective depth along the axis
 
     // World → clip, for the shadow pass (composed in double, then used in float).
     glm::dmat4 world_to_clip(const glm::dmat4& relative) const;

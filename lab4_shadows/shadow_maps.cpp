@@ -251,7 +251,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     else  // a point light, or a spot too wide for one map
         f = fit_point(position, casters);
     const bool perspective = light.type != lab::LightDesc::Type::Directional;
-    // Perspective depth = a − b / distance (glm::perspectiveRH_ZO), for the cube lookup and the view.
+    // The perspective depth's a and b (glm::perspectiveRH_ZO's third and fourth rows), for the cube lookup and the view.
     const double a = f.far_plane / (f.far_plane - f.near_plane), b = f.far_plane * f.near_plane / (f.far_plane - f.near_plane);
     map.gpu.view_projection = glm::mat4(f.view_projection);
     map.gpu.origin = glm::vec4(glm::vec3(f.origin), 1.0f);

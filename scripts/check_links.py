@@ -16,8 +16,9 @@ Prints one line per broken link (file:line: the target and why) and exits 1 if t
 
 --unlink-missing (exercise.sh runs it on the copy it writes): each link or picture whose file is
 in PROJECT but not in the copy becomes plain text, marked "(a later lab, not in this copy)" when the path is named
-after a lab later than N (the rule of exercise.sh --left-out), else "(instructors' material, not
-in this copy)" (docs/diffs/, site/, docs/solutions/).
+after a lab later than N (the rule of exercise.sh --left-out), a diff "(not in this copy; your student
+site shows the diffs of the labs before this one)", else "(instructors' material, not in this
+copy)" (site/, docs/solutions/).
 """
 import os
 import re
@@ -172,7 +173,8 @@ def unlink_missing(top, n, source):
                 if os.path.exists(dest) or not os.path.exists(os.path.join(source, where)):
                     continue
                 mark = ("a later lab, not in this copy" if later_lab(where, n)
-                        else "instructors' material, not in this copy")
+                        else "not in this copy; your student site shows the diffs of the labs before this one"
+                        if where.startswith("docs/diffs") else "instructors' material, not in this copy")
                 text = re.match(r"!?\[(.*)\]\(", m.group(0), re.S).group(1)
                 if m.group(0).startswith("!"):
                     plain = f"*(picture: {text or where}; {mark})*"

@@ -201,6 +201,8 @@ left_out() {
     echo site        # the course site: its pages show every lab and the diffs
     echo docs/solutions  # the answers the exercises' comments do not give (instructors only)
     echo docs/solutions.md  # the instructors' policy: where every answer is, what to hand out when
+    # lab 2's Blinn-Phong whole, a benchmark's fixture (bench/speed_goals.sh): an answer until lab 3
+    if ((n <= 2)); then echo bench/fixtures/minimal_blinn_phong.frag; fi
     later_test_files "$n"
     # A scene folder (models, textures) that only later labs' scene files use: every JSON file that
     # names it ("textures/bricks.png") is left out. A folder no JSON file names stays.
@@ -239,7 +241,7 @@ known_answers=(
 # (complete) project: name US file:line US the line without any whitespace. Only "substantive"
 # lines: 16 or more non-space characters. Shorter lines (braces, `return 1.0;`, `} else {`,
 # `float d = 0.0;` is 12) are everywhere in the project and say nothing about the answer, while
-# a line of 16 is already specific (`vec3 H = normalize(L + V);` is 22). A line that is also one
+# a line of 16 is already specific (`vec3 Q = normalize(P - E);` is 22). A line that is also one
 # of the exercise's STUB lines, or part of one (a function's signature the stub keeps), is no
 # answer: the copy has it on purpose. Nor is boilerplate: a line
 # the project's own code also holds outside every exercise (common/, and the labs' files with their
@@ -367,6 +369,12 @@ check_copy() {
   echo "$comments" | grep -v '^FAIL' || true
   problems=$((problems + $(echo "$comments" | grep -c '^FAIL' || true)))
   echo "$comments" | grep '^FAIL' | head -n 20 || true
+  # (e) no text file states an answer of the lab's or a later lab's exercises in any of the forms
+  #     docs/solutions/answers.json declares (a formula, an enum, a phrase; scripts/check_answers.py).
+  local declared rc=0
+  declared=$(python3 "$root/scripts/check_answers.py" "$dir" "$n" 2>&1) || rc=$?
+  echo "$declared"
+  ((rc == 0)) || problems=$((problems + $(echo "$declared" | grep -c '^FAIL' || true) + (rc != 1)))
   if ((problems)); then
     echo "check-copy: $dir: $problems problem(s) (a copy of $lab must hold none of its answers)"
     return 1
@@ -667,6 +675,9 @@ for p in "${gone[@]}"; do rm -rf "${out:?}/$p"; done
 # Links to what was left out become plain text, marked as a later lab's or instructors' material,
 # so every link of the copy works (--check-copy-links).
 python3 "$root/scripts/check_links.py" --unlink-missing "$out" "$(lab_number "$lab")" "$root" >/dev/null
+# The docs' answer spans (<!-- answer NAME: question -->answer<!-- /answer -->) become their
+# questions for this lab's and later labs' exercises (scripts/check_answers.py --rewrite).
+python3 "$root/scripts/check_answers.py" --rewrite "$out" "$(lab_number "$lab")" >/dev/null
 # Marks the copy (tests/CMakeLists.txt: the tests of the whole project are disabled there).
 printf '%s\n%s\n' "$lab" "${names[*]}" >"$out/.student-copy"
 

@@ -1,6 +1,10 @@
 // site/no_answers.mjs — no page of a student edition holds an answer (CTest site_student_no_answers).
 //
-//   node site/no_answers.mjs --out DIR [--labs 1,2,3,4]     # build and check the student edition of each lab
+//   node site/no_answers.mjs --out DIR [--labs 1,2,3,4] [--and-instructors]
+//                                                            # build and check the student edition of each lab;
+//                                                            # with --and-instructors the instructors' edition
+//                                                            # too, where check_answers.py must find each lab's
+//                                                            # declared answers (CTest: the check can fail)
 //   node site/no_answers.mjs --out DIR --instructors N       # the instructors' edition against lab N's answers:
 //                                                            # it must report hits (the check can fail)
 //
@@ -10,6 +14,10 @@
 // files) is read as the reader sees it — tags stripped, HTML entities decoded, whitespace removed,
 // the way exercise.sh compares — and may not contain any of them. Exit 0: no answer anywhere;
 // 1: answers found (each named: page, exercise, where the solution line is); 2: bad arguments;
+// Each student edition must also pass scripts/check_answers.py DIR N: no answer of lab N or later in
+// any of the forms docs/solutions/answers.json declares (a formula in prose, an enum, a phrase, a
+// test's expected value), read as the page shows it (tags stripped, entities decoded, KaTeX and
+// Unicode signs normalised).
 // 77: skipped (site/node_modules missing, or this is a student copy), with one line saying why.
 import fs from 'node:fs';
 import path from 'node:path';
@@ -69,9 +77,27 @@ for (const n of wanted) {
     }
   }
   if (hits > 20) console.log(`… and ${hits - 20} more`);
+  if (!instructors) {  // the declared answers (formulas, enums, phrases), in every text file of the edition
+    const declared = spawnSync('python3', [path.join(root, 'scripts/check_answers.py'), dir, String(n)], { encoding: 'utf8' });
+    process.stdout.write(declared.stdout + declared.stderr);
+    if (declared.status !== 0) { hits++; console.log(`FAIL the student edition of lab ${n} states declared answers (check_answers.py)`); }
+  }
   const what = instructors ? "the instructors' edition" : `the student edition of lab ${n}`;
   console.log(`${what}: ${pages.length} text files, ${answers.length} answer lines of ${lab} and later, ${hits} found`);
   if (hits) failed++;
+}
+if (args.includes('--and-instructors') && !instructors) {  // the check can fail: the instructors' edition states every answer
+  const dir = path.join(out, 'instructors');
+  fs.rmSync(dir, { recursive: true, force: true });
+  const built = spawnSync(process.execPath, [path.join(siteDir, 'build.mjs'), '--out', dir], { encoding: 'utf8' });
+  if (built.status !== 0) { console.log(`FAIL the instructors' edition did not build:\n${built.stderr}`); failed++; }
+  else {
+    for (const n of wanted) {
+      const found = spawnSync('python3', [path.join(root, 'scripts/check_answers.py'), '--must-find', dir, String(n)], { encoding: 'utf8' });
+      console.log(`the instructors' edition, lab ${n}'s answers and later: ${found.stdout.trim().split('\n').pop()}`);
+      if (found.status !== 0) { console.log(`FAIL check_answers.py finds no answer of lab ${n} in the instructors' edition: it cannot fail`); failed++; }
+    }
+  }
 }
 if (failed) { console.log(`site_student_no_answers: FAILED (${failed} edition(s) with answers or not built)`); process.exit(1); }
 console.log('site_student_no_answers: passed');

@@ -3,8 +3,12 @@
 // The student edition of lab N is built from a real student copy (`scripts/exercise.sh labN --out
 // TMP`): common/, labs 1..N-1 complete, lab N with its exercises stubbed, no later lab, no
 // docs/diffs/, no site/, no docs/solutions* (instructor material). Into that copy go:
-//   - docs/diffs/lessons.md with the sections of labs 2..N only, and the diffs made from it by the
-//     copy's own scripts/make_diffs.sh (so the diff into lab N shows lab N's stubs, not its answers);
+//   - docs/diffs/lessons.md with the sections of labs 2..N-1 only, and the diffs made from it by the
+//     copy's own scripts/make_diffs.sh: the lessons of the labs before N, whose answers are no secret
+//     once lab N is handed out. Not the diff into lab N: its reading guides state lab N's answers
+//     (lessons.md is the instructors' manifest), and lab N's README and files are the lesson.
+//   The copy's Markdown has its answer spans replaced by their questions (exercise.sh runs
+//   scripts/check_answers.py --rewrite), so the pages show the questions.
 //
 // Later labs in the text (laterLabText): a Markdown section — a heading and its text up to the next
 // heading — that mentions a later lab is left out together with the sections under it. "Mentions"
@@ -37,17 +41,22 @@ export function prepareStudentTree(root, lab, n) {
     }
   };
   run('the student copy', [path.join(root, 'scripts/exercise.sh'), lab, '--out', tree], root);
-  // The manifest, cut to the labs the copy has; the copy's make_diffs.sh writes the diffs from its labs.
+  // The manifest, cut to the labs before lab n; the copy's make_diffs.sh writes their diffs.
   const kept = [];
   let keep = true;
   for (const line of fs.readFileSync(path.join(root, 'docs/diffs/lessons.md'), 'utf8').split('\n')) {
     const m = /^## lab(\d+)_/.exec(line);
-    if (m) keep = parseInt(m[1], 10) <= n;
+    if (m) keep = parseInt(m[1], 10) < n;
     if (keep) kept.push(line);
   }
   fs.mkdirSync(path.join(tree, 'docs/diffs'), { recursive: true });
   fs.writeFileSync(path.join(tree, 'docs/diffs/lessons.md'), kept.join('\n'));
-  if (n > 1) run('the lesson diffs of the copy', [path.join(tree, 'scripts/make_diffs.sh')], tree);
+  if (kept.some((l) => /^## lab\d+_/.test(l))) run('the lesson diffs of the copy', [path.join(tree, 'scripts/make_diffs.sh')], tree);
+  // make_diffs.sh writes a diff (empty: no section) into every lab the copy has: not the one into lab n.
+  for (const f of fs.readdirSync(path.join(tree, 'docs/diffs'))) {
+    const m = /-lab(\d+)_\w+\.diff$/.exec(f);
+    if (m && parseInt(m[1], 10) >= n) fs.rmSync(path.join(tree, 'docs/diffs', f));
+  }
   return { tree, cleanup: () => fs.rmSync(tmp, { recursive: true, force: true }) };
 }
 

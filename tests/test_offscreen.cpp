@@ -76,7 +76,7 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         EXPECT_EQ(red_at(image, 5, 5), 0) << "outside the squares: the clear colour";
         EXPECT_EQ(red_at(image, 99, 100), 0) << "above the squares";
 
-        // Frame 2: a perspective map (near 1, far 11: depth = a − b / z with a = b = 1.1), cleared
+        // Frame 2: a perspective map (near 1, far 11: a = b = 1.1 in depth_view.h's terms), cleared
         // to the depth of z = 3.5: shown as (z − near) / (far − near) = 0.25. One square of 0.8 NDC:
         // x ∈ [−0.405, 0.395], y ∈ [0.18, 0.98] → centre pixel (99, 158).
         const float a = 1.1f, b = 1.1f;

@@ -122,9 +122,9 @@ struct MaterialDesc {
     std::string albedo_map;
     std::string specular_map;
     std::string emissive_map;
-    float emissive_strength = 1.0f;  // e = emissive + emissive_strength · E(uv)
+    float emissive_strength = 1.0f;  // how strongly the emissive map E glows (docs/scene-format.md)
     float opacity = 1.0f;            // lab 4: < 1 is translucent (blended α, 1 − α; shadows let 1 − α through)
-    glm::vec2 uv_scale{1.0f};        // uv' = uv · uv_scale + uv_offset
+    glm::vec2 uv_scale{1.0f};        // the map's repeats across the mesh's uv (docs/scene-format.md)
     glm::vec2 uv_offset{0.0f};
     SamplerDesc sampler;
     bool distorted = false;  // "sampling": "distorted" (albedo map only) instead of "single"

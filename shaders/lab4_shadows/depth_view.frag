@@ -14,7 +14,7 @@ layout(location = 0) out vec4 out_color;
 
 void main() {
     float depth = texture(depth_map, in_uv).r;
-    if (view.perspective.y > 0.0) {  // depth = a − b / z  →  z, then (z − near) / (far − near)
+    if (view.perspective.y > 0.0) {  // the stored depth →  z, then (z − near) / (far − near)
         const float a = view.perspective.x, b = view.perspective.y;
         const float z = b / max(a - depth, 1e-30), near = b / a, far = b / (a - 1.0);
         depth = clamp((z - near) / (far - near), 0.0, 1.0);
