@@ -204,6 +204,9 @@ left_out() {
     # lab 2's Blinn-Phong whole, a benchmark's fixture (bench/speed_goals.sh): an answer until lab 3
     if ((n <= 2)); then echo bench/fixtures/minimal_blinn_phong.frag; fi
     later_test_files "$n"
+    # The CPU reference's source and its own tests (hand calculations that are the labs' answers):
+    # a copy gets the reference prebuilt instead (reference_libs, tests/CMakeLists.txt).
+    reference_source
     # A scene folder (models, textures) that only later labs' scene files use: every JSON file that
     # names it ("textures/bricks.png") is left out. A folder no JSON file names stays.
     for d in scenes/*/; do
@@ -214,6 +217,43 @@ left_out() {
       if [ -n "$users" ] && [ -z "$(later_lab_names "$n" keep <<<"$users")" ]; then echo "$d"; fi
     done
   } | topmost
+}
+
+# The oracle's source and its own tests, one path a line: what reference_libs replaces.
+reference_source() {
+  ls tests/reference/*.cpp
+  echo tests/test_cpu_reference.cpp; echo tests/test_ideal_reference.cpp; echo tests/test_cpu_shadow.cpp
+  echo tests/test_reference_lighting.cpp; echo tests/test_reference_sampling.cpp
+}
+
+# Writes the CPU reference, prebuilt, into copy $1 of lab $2 (a number): tests/reference/lib/
+# libcpu_reference.a, and from lab 3 on libreference_vulkan.a (lab 3's unit tests read the device
+# through it); tests/CMakeLists.txt links them where the source is missing. Built here with the
+# course's platform's compiler (Debian 12 x86-64: g++ 12) and the project's release flags, without
+# debug information, into build/student-reference/<hash of the sources and the compiler>/ (once
+# per state of the reference; flock: copies written at the same time share it).
+reference_libs() {
+  local out="$1" n="$2" cxx="${CXX:-c++}" key cache f
+  local -a flags=(-std=c++17 -O2 -DNDEBUG -DGLM_FORCE_DEPTH_ZERO_TO_ONE -DGLM_FORCE_RADIANS -I tests -I common/content -I common/vulkan)
+  key=$( { "$cxx" --version | head -n 1; echo "${flags[*]}"; cat tests/reference/* common/content/*.h common/vulkan/*.h; } | sha256sum | cut -c1-16)
+  cache="$root/build/student-reference/$key"
+  mkdir -p "$root/build/student-reference"
+  (
+    flock 9
+    if [ ! -f "$cache/done" ]; then
+      rm -rf "$cache"; mkdir -p "$cache"
+      for f in tests/reference/*.cpp; do echo "$f"; done |
+        xargs -P 2 -I{} sh -c '"$0" "$@" -c {} -o "'"$cache"'/$(basename {} .cpp).o"' "$cxx" "${flags[@]}" \
+        >"$cache/build.log" 2>&1 || { cat "$cache/build.log" >&2; die "the CPU reference did not compile (see $cache/build.log)"; }
+      ar rcs "$cache/libreference_vulkan.a" "$cache/vulkan_reference.o"
+      rm "$cache/vulkan_reference.o"
+      ar rcs "$cache/libcpu_reference.a" "$cache"/*.o
+      touch "$cache/done"
+    fi
+  ) 9>"$root/build/student-reference/lock"
+  mkdir -p "$out/tests/reference/lib"
+  cp "$cache/libcpu_reference.a" "$out/tests/reference/lib/"
+  if ((n >= 3)); then cp "$cache/libreference_vulkan.a" "$out/tests/reference/lib/"; fi
 }
 
 # Paths on stdin, sorted, without those inside another one given (a folder stands for its files).
@@ -672,6 +712,7 @@ mkdir -p "$out"
 tar -C "$root" --exclude='./build*' --exclude=./out --exclude=./student --exclude=./.git -cf - . | tar -C "$out" -xf -
 mapfile -t gone < <(left_out "$(lab_number "$lab")")
 for p in "${gone[@]}"; do rm -rf "${out:?}/$p"; done
+reference_libs "$out" "$(lab_number "$lab")"
 # Links to what was left out become plain text, marked as a later lab's or instructors' material,
 # so every link of the copy works (--check-copy-links).
 python3 "$root/scripts/check_links.py" --unlink-missing "$out" "$(lab_number "$lab")" "$root" >/dev/null
@@ -713,7 +754,9 @@ for l in "${labs[@]}"; do [ "$l" = "$lab" ] && break; earlier+="${earlier:+, }$l
 cat <<EOF
 It holds common/, ${earlier:+the earlier labs complete ($earlier), }$lab with the exercises above cut out,
 and the tests, scenes, docs and scripts they use. Left out: the later labs (with their shaders,
-scenes, tests and gallery pictures), docs/diffs/ and site/ (bash scripts/exercise.sh --left-out $short).
+scenes, tests and gallery pictures), docs/diffs/ and site/ (bash scripts/exercise.sh --left-out $short),
+and the CPU reference's source: the copy's tests link it prebuilt (tests/reference/lib/, built
+here for Debian 12 x86-64), with its headers.
 Hand it out only as docs/solutions.md says: a copy of lab N+1 holds lab N's solutions.
 Check it: bash scripts/exercise.sh --check-copy $out $short
 Build and grade it:

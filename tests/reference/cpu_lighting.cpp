@@ -138,6 +138,11 @@ double attenuation(const glm::dvec3& k, double d) {
     return 1.0 / std::max(k.x + k.y * d + k.z * d * d, kMinDenominator);
 }
 
+double packed_spot_factor(const glm::dvec2& cone, double cos_theta) {
+    // (cos outer, 1 / width): a linear ramp from the outer edge, clamped; no width: a hard edge.
+    return cone.y > 0.0 ? std::clamp((cos_theta - cone.x) * cone.y, 0.0, 1.0) : (cos_theta >= cone.x ? 1.0 : 0.0);
+}
+
 double spot_factor(double inner_deg, double outer_deg, lab::LightingDesc::SpotFalloff falloff, double cos_theta) {
     const double cos_outer = cos_deg(outer_deg);
     const double cos_start = falloff == lab::LightingDesc::SpotFalloff::Edge ? 1.0 : cos_deg(inner_deg);

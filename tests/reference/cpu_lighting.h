@@ -28,6 +28,9 @@ double attenuation(const glm::dvec3& k, double d);
 // edge (the seeds' falloff): 1 − (1 − cosθ) / (1 − cos outer), clamped, i.e. smooth with inner = 0.
 // A ramp narrower than 1e-6 in cosine (e.g. inner == outer) is a hard edge: cosθ ≥ cos outer.
 double spot_factor(double inner_deg, double outer_deg, lab::LightingDesc::SpotFalloff falloff, double cos_theta);
+// The same factor from the pair lab 2's lights.cpp packs for the shader (spot_cone): `cone` as
+// that file's comment defines it. The lab's packing test compares the two.
+double packed_spot_factor(const glm::dvec2& cone, double cos_theta);
 
 // The inverse transpose of the model matrix's 3×3 part (normals stay perpendicular under
 // non-uniform scale).

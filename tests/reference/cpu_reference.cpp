@@ -214,31 +214,38 @@ glm::dmat4 Camera::view() const {
 }
 
 Camera make_camera(const lab::CameraDesc& desc) {
-    Camera cam;
-    cam.eye = glm::dvec3(desc.position);
+    Camera cam = desc.mode == lab::CameraDesc::Mode::Transform
+                     ? transform_camera(glm::dvec3(desc.position), desc.yaw_deg, desc.pitch_deg, desc.roll_deg)
+                     : look_at_camera(glm::dvec3(desc.position), glm::dvec3(desc.target), glm::dvec3(desc.up));
     cam.fov_y_deg = desc.fov_y_deg;
     cam.near_plane = desc.near_plane;
     cam.far_plane = desc.far_plane;
+    return cam;
+}
 
-    if (desc.mode == lab::CameraDesc::Mode::Transform) {
-        // C = T(position) · Ry(yaw) · Rx(pitch) · Rz(roll); the columns of the
-        // rotation part are the camera's axes in world space.
-        const glm::dmat4 r =
-            rotate_y(desc.yaw_deg) * rotate_x(desc.pitch_deg) * rotate_z(desc.roll_deg);
-        cam.right = glm::dvec3(r[0]);
-        cam.up = glm::dvec3(r[1]);
-        cam.forward = -glm::dvec3(r[2]);
-        return cam;
-    }
+Camera transform_camera(const glm::dvec3& position, double yaw_deg, double pitch_deg, double roll_deg) {
+    Camera cam;
+    cam.eye = position;
+    // C = T(position) · Ry(yaw) · Rx(pitch) · Rz(roll); the columns of the
+    // rotation part are the camera's axes in world space.
+    const glm::dmat4 r = rotate_y(yaw_deg) * rotate_x(pitch_deg) * rotate_z(roll_deg);
+    cam.right = glm::dvec3(r[0]);
+    cam.up = glm::dvec3(r[1]);
+    cam.forward = -glm::dvec3(r[2]);
+    return cam;
+}
 
+Camera look_at_camera(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up_in) {
+    Camera cam;
+    cam.eye = eye;
     // Look-at: f = normalize(target − eye), r = normalize(f × up), u = r × f.
-    glm::dvec3 f = glm::dvec3(desc.target) - cam.eye;
+    glm::dvec3 f = target - cam.eye;
     if (glm::length(f) == 0.0) {
         f = glm::dvec3(0.0, 0.0, -1.0);  // eye == target: look down −Z
     } else {
         f = glm::normalize(f);
     }
-    glm::dvec3 up(desc.up);
+    glm::dvec3 up = up_in;
     if (glm::length(glm::cross(f, up)) < 1e-6 * glm::length(up)) {
         // Looking along `up` (e.g. straight down): replace up by ±Z (or ±X when f
         // itself is along Z), signed like f·up. Straight down with up = +Y gives
@@ -251,6 +258,21 @@ Camera make_camera(const lab::CameraDesc& desc) {
     cam.right = glm::normalize(glm::cross(f, up));
     cam.up = glm::cross(cam.right, f);
     return cam;
+}
+
+glm::dmat4 projection(const Camera& camera, double aspect) {
+    // Camera space (looking down −Z, +Y up) to Vulkan's clip space: x and y divided by the
+    // image plane's half extent at depth 1 (primary_ray's), y negated (Vulkan's framebuffer y
+    // points down), w = −z, and depth z/w = 0 at view depth near, 1 at far.
+    const double f = 1.0 / std::tan(camera.fov_y_deg * kPi / 360.0);
+    const double n = camera.near_plane, fa = camera.far_plane;
+    glm::dmat4 p(0.0);
+    p[0][0] = f / aspect;
+    p[1][1] = -f;
+    p[2][2] = fa / (n - fa);
+    p[2][3] = -1.0;
+    p[3][2] = n * fa / (n - fa);
+    return p;
 }
 
 Ray primary_ray(const Camera& camera, int width, int height, double px, double py) {

@@ -68,14 +68,20 @@ struct Camera {
     double near_plane = 0.01;
     double far_plane = 100.0;
 
-    // Camera-to-world matrix (columns right, up, −forward, eye) and its inverse, the view matrix.
+    // Camera-to-world matrix and its inverse, the view matrix.
     glm::dmat4 camera_to_world() const;
     glm::dmat4 view() const;
 };
 
-// Builds the camera of either mode (lookat with the documented fallbacks, or
-// transform mode C = T · Ry(yaw) · Rx(pitch) · Rz(roll)).
+// Builds the camera of either mode of a scene file (docs/conventions.md): look-at with its
+// documented fallbacks, or transform mode from position and angles.
 Camera make_camera(const lab::CameraDesc& desc);
+// The same in double precision, one mode each (the camera unit tests compare lab 1 with them).
+Camera look_at_camera(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up);
+Camera transform_camera(const glm::dvec3& position, double yaw_deg, double pitch_deg, double roll_deg);
+// The camera → clip-space matrix of `camera` for an image of width / height = aspect, in
+// Vulkan's clip space (docs/conventions.md). The ray caster needs none; the tests compare with it.
+glm::dmat4 projection(const Camera& camera, double aspect);
 
 // A ray origin + t · dir. Primary rays are built with a *non-normalised*
 // direction whose camera-space z is −1, so the ray parameter t of a hit is its
