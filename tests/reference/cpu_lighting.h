@@ -20,20 +20,19 @@ namespace ref {
 
 // --- the pieces (unit-tested against hand calculation) ---
 
-// 1 / (c + l·d + q·d²); k = [0, 0, 0] means no falloff (1); the denominator is clamped to ≥ 1e-6.
+// A point or spot light's falloff at distance d with the scene's coefficients k (docs/lighting.md,
+// "attenuation"), with its documented numerical-safety rule.
 double attenuation(const glm::dvec3& k, double d);
 
-// The spot cone factor for cos_theta = cos(angle between the spot axis and the ray to the point):
-// smooth: clamp((cosθ − cos outer) / (cos inner − cos outer), 0, 1);
-// edge (the seeds' falloff): 1 − (1 − cosθ) / (1 − cos outer), clamped, i.e. smooth with inner = 0.
-// A ramp narrower than 1e-6 in cosine (e.g. inner == outer) is a hard edge: cosθ ≥ cos outer.
+// The spot cone factor for cos_theta = cos(angle between the spot axis and the ray to the point),
+// for either falloff docs/lighting.md defines (smooth, and the seeds' edge), hard edges included.
 double spot_factor(double inner_deg, double outer_deg, lab::LightingDesc::SpotFalloff falloff, double cos_theta);
 // The same factor from the pair lab 2's lights.cpp packs for the shader (spot_cone): `cone` as
 // that file's comment defines it. The lab's packing test compares the two.
 double packed_spot_factor(const glm::dvec2& cone, double cos_theta);
 
-// The inverse transpose of the model matrix's 3×3 part (normals stay perpendicular under
-// non-uniform scale).
+// The matrix that takes object-space normals to world space for `model` (normals stay
+// perpendicular to their surfaces under non-uniform scale).
 glm::dmat3 normal_matrix(const glm::dmat4& model);
 
 // The equation at one surface point: emissive + ambient·albedo + Σ radiance·reflectance.

@@ -86,10 +86,10 @@ glm::dvec2 lod_bounds(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy);
 glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::dvec2 uv, glm::dvec2 dx,
                   glm::dvec2 dy, const SamplingVariant& variant = {});
 
-// A ShadeFn for lab 3 (Phong or flat shading): lab 2's equation with the textured terms
-//   a = albedo·A(uv'), s = specular·S(uv'), e = emissive + emissive_strength·E(uv'),
-//   uv' = uv·uv_scale + uv_offset, A distorted per docs/scene-format.md when "sampling" is
-// "distorted". The UV derivatives come from ray differentials of a width × height image.
+// A ShadeFn for lab 3 (Phong or flat shading): lab 2's equation with the material's textured terms
+// as docs/lighting.md and docs/scene-format.md define them (the maps at the material's transformed
+// UV, "distorted" sampling included). The UV derivatives come from ray differentials of a
+// width × height image.
 // With `supersample_level0` every lookup is bilinear on level 0 (for render_supersampled).
 // `variant`: every lookup of the shader done that way (tests/test_lab3_render.cpp's envelope).
 // Lab 4: with `shadows`, every light with cast_shadows is scaled by shadows->transmittance() at the

@@ -137,7 +137,7 @@ lab::Image8 error_heatmap(const lab::Image8& a, const lab::Image8& b, const std:
 //   receiver:        |U − Z| ≥ min_contrast in some channel (a shadow-casting light shows there);
 //   lit fraction:    f_X = (X − Z)·(U − Z) / |U − Z|²  (1 = fully lit, 0 = fully shadowed);
 //   state:           lit if f ≥ ½, shadow otherwise; non-receivers have a state of their own;
-//   band:            pixels with a pixel of another S-state within Chebyshev distance k;
+//   band:            pixels with a pixel of another S-state within k pixels in x and in y;
 //   wrong_side:      receivers outside the band where state(X) ≠ state(S);
 //   mae:             over all receivers, the mean of |X − S| averaged over R, G, B, in 1/255.
 // ---------------------------------------------------------------------------
