@@ -4,8 +4,9 @@
 //
 // Two editions. The instructors' (default DIR build/site) shows the whole project. The student
 // edition of lab N (--student N, default DIR build/site-student-labN) is built from a real student
-// copy of lab N (site/student.mjs: scripts/exercise.sh labN): lessons 1..N, the diffs up to lab N
-// with lab N's exercises stubbed as the copy has them, the exercise rows linking to the stubbed
+// copy of lab N (site/student.mjs: scripts/exercise.sh labN): lessons 1..N (the docs' answer spans
+// replaced by their questions), the diffs of the labs before N (not the one into lab N: its reading
+// guides state lab N's answers), lab N's exercises stubbed as the copy has them, the exercise rows linking to the stubbed
 // lines, no page, link or picture of a later lab, the docs without their sections about later labs
 // and without docs/solutions.md.
 //
