@@ -10,7 +10,8 @@
 #                                                       # exercises (CTest: student_copy_no_answers)
 #   bash scripts/exercise.sh --check-copy-links         # write a copy of every lab; every link in
 #                                                       # it resolves (CTest: student_copy_links)
-#   bash scripts/exercise.sh --prove BUILD_DIR LAB      # the grader's own test (CTest: grader_labN)
+#   bash scripts/exercise.sh --prove BUILD_DIR LAB [--rows]  # the grader's own test (CTest:
+#                                                       # grader_labN); --rows: the measured blame
 #   bash scripts/exercise.sh --solution-lines LAB       # the substantive solution lines of LAB's and
 #                                                       # every later lab's exercises (name US where US code)
 #   bash scripts/exercise.sh --solution-code LAB [only] # their code as written, stubs too (for
@@ -83,7 +84,9 @@ markers_in() {
     }' $files
 }
 
-# The exercises of lab $1: its markers whose name no earlier lab has.
+# The exercises of lab $1: its markers whose name no earlier lab has, in the order the lab's README
+# numbers them (tests/graded_exercises.txt's "!order name…" rows; the grader's hints and the course
+# site follow it too), then any the order does not name, by path and line.
 exercises_of() {
   local lab="$1" earlier="" l
   for l in "${labs[@]}"; do
@@ -93,7 +96,10 @@ exercises_of() {
   markers_in "$lab" | while IFS=$'\037' read -r name file line hint tests; do
     [[ " $earlier " == *" $name "* ]] && continue
     printf '%s\037%s\037%s\037%s\037%s\n' "$name" "$file" "$line" "$hint" "$tests"
-  done
+  done | awk -F '\037' '
+    FNR == NR { sub(/#.*/, ""); if ($1 ~ /^!order[ \t]/) { n = split($1, w, /[ \t]+/); for (i = 2; i <= n; i++) rank[w[i]] = ++r } next }
+    { printf "%06d\037%06d\037%s\n", ($1 in rank ? rank[$1] : 999999), FNR, $0 }' \
+    "$( [ -f "$root/tests/graded_exercises.txt" ] && echo "$root/tests/graded_exercises.txt" || echo /dev/null)" - | sort -t $'\037' -k1,1 -k2,2 | cut -d $'\037' -f3-
 }
 
 # FILE with the exercises NAMEs replaced by their stubs, on stdout.
@@ -447,15 +453,24 @@ copy_links() {
   python3 "$root/scripts/check_links.py" "$1" | sed "s|^|$2 copy: |"
 }
 
-# --prove BUILD LAB (the CTest test grader_labN): the grader really grades, and names the real
-# cause. With the complete lab every test an exercise names ("Checked by") passes. Then, for each
-# exercise e, one of its tests must show isolation:
-#   (a) with only e stubbed (the others solved) it fails, and its message names e first;
-#   (b) with only e solved (every other exercise of the lab stubbed, but the prerequisites that
-#       tests/graded_exercises.txt gives e's own code: "@e x y") it passes.
-# Prints, per exercise, the test that showed it. Reuses BUILD (see the end of tests/CMakeLists.txt).
+# --prove BUILD LAB [--rows] (the CTest test grader_labN): the grader's blame is measured, not
+# declared. For each exercise e of LAB, the lab is built with only e stubbed (the others solved;
+# one build, only the stubbed files recompiled) and the lab's whole CTest label runs against it
+# (tests/grader_label_run.py: the unit and render tests, smoke runs, windows, soaks, the random
+# scenes with 5 seeds a shard, the gallery; two at a time). Then:
+#   (a) at least one test fails, and every failing test's message names e first (the gtests'
+#       hint, tests/exercise_hints.cpp, or tests/with_exercise_hint.sh's for the others);
+#   (b) every row of tests/graded_exercises.txt that lists e matches only tests that failed:
+#       the table says what was measured, no more;
+#   (c) with only e solved (every other exercise stubbed, but the prerequisites that
+#       tests/graded_exercises.txt gives e's own code: "@e x y") one of e's own tests ("Checked
+#       by") that failed in (a) passes: the test isolates e.
+# Prints per exercise how many tests failed and whether each named it; writes the measurement to
+# BUILD/grader/LAB.measured. --rows prints, instead of judging, the rows that say what was measured
+# (each failing test → the exercises whose stub fails it), for tests/graded_exercises.txt.
 prove() {
-  local build="$1" lab="$2"
+  local build="$1" lab="$2" rows="${3:-}"
+  build="$(cd "$build" && pwd)"
   local g="$build/grader"
   local conf="$g/$lab.env"
   [ -f "$conf" ] || die "$conf is missing: configure $build first (scripts/setup.sh)"
@@ -470,12 +485,12 @@ prove() {
     echo "grader: this is a student copy of $lab (TODO EXERCISE markers): the grader's proof runs on the complete lab (skipped)"
     exit 77
   fi
-  local log="$g/$lab.log"
+  local python="${LAB_PYTHON:-python3}"
+  command -v "$python" >/dev/null || { echo "grader: SKIPPED: python3 missing (scripts/setup.sh installs it)"; exit 77; }
+  local log="$g/$lab.log" short="${lab%%_*}"
   : >"$log"
-  local -a graded_targets runners graded_bins
+  local -a graded_targets
   IFS=';' read -r -a graded_targets <<<"$GRADED_TARGETS"
-  IFS=';' read -r -a runners <<<"$RUNNER_BINARIES"
-  IFS=';' read -r -a graded_bins <<<"$GRADED_BINARIES"
   local -a variants=()
   IFS=';' read -r -a variants <<<"${SHADER_VARIANTS:-}"
   local failures=0 names=()
@@ -497,10 +512,13 @@ prove() {
     done
   }
   compile() {
-    local s
+    local s newest
     mkdir -p "$g/shaders/$lab"
+    newest=$(ls -t "$g/src/shaders/$lab"/* 2>/dev/null | head -n 1)
     for s in "$g/src/shaders/$lab"/*.vert "$g/src/shaders/$lab"/*.frag "$g/src/shaders/$lab"/*.comp; do
       [ -e "$s" ] || continue
+      # Unchanged since its last compile: no source of the folder (its includes) is newer.
+      [ "$g/shaders/$lab/$(basename "$s").spv" -nt "$newest" ] && continue
       "$GLSLANG" -V --target-env vulkan1.1 -o "$g/shaders/$lab/$(basename "$s").spv" "$s" >>"$log" 2>&1 ||
         { echo "grader: $s does not compile (see $log)"; return 1; }
     done
@@ -511,77 +529,94 @@ prove() {
       "$GLSLANG" -V --target-env vulkan1.1 "-D$vdefine" -o "$g/shaders/$lab/$vname.spv" "$s" >>"$log" 2>&1 ||
         { echo "grader: $s with $vdefine does not compile (see $log)"; return 1; }
     done
-    "$CMAKE" --build "$build" --target "${graded_targets[@]}" -j2 >>"$log" 2>&1 ||
+    "$CMAKE" --build "$build" --target "${graded_targets[@]}" exercise_hint -j2 >>"$log" 2>&1 ||
       { echo "grader: building ${graded_targets[*]} failed (see $log)"; return 1; }
   }
-  # Runs the tests matching $1 (gtest patterns, space-separated) in every test binary of the lab
-  # (the hints read the mirror: LAB_EXERCISE_SOURCES); the output goes to $g/out.
-  run_tests() {
-    local filter="${1// /:}" out_dir="$g/test_output/$2" bin
-    : >"$g/out"
-    for bin in "${runners[@]}" "${graded_bins[@]}"; do
-      [ -n "$bin" ] || continue
-      if LAB_EXE_DIR="$LAB_EXE_DIR" LAB_SHADER_DIR="$g/shaders/$lab" LAB_TEST_OUTPUT="$out_dir" \
-           LAB_EXERCISE_SOURCES="$g/src" "$bin" --gtest_filter="$filter" >"$g/one" 2>&1; then :; fi
-      cat "$g/one" >>"$g/out"
-    done
+  # The label run against the build of the mirror: $g/runs/$1/results.tsv
+  # (name, passed|failed|skipped, the exercise named first | done | -, seconds).
+  label_run() {  # run-name [--only a,b]
+    local dir="$g/runs/$1"
+    shift
+    rm -rf "$dir"
+    "$python" tests/grader_label_run.py "$build" "$lab" "$g" "$dir" --jobs 2 "$@" >>"$log" 2>&1 ||
+      { echo "grader: tests/grader_label_run.py failed (see $log)"; return 1; }
   }
-  # Each test of the last run: "name ok|failed exercise-its-message-names-first" ($g/out).
-  results() {
-    awk '
-      /^\[ RUN      \] / { cur = $4 }
-      /^\[       OK \] / && NF >= 4 { state[$4] = "ok"; order[++n] = $4 }
-      /^\[  FAILED  \] [^ ]+ \(/ { state[$4] = "failed"; order[++n] = $4 }
-      /^\[ exercise \] this test needs `/ && cur != "" && !(cur in named) {
-        s = $0; sub(/^[^`]*`/, "", s); sub(/`.*/, "", s); named[cur] = s
-      }
-      END { for (i = 1; i <= n; i++) print order[i], state[order[i]], (order[i] in named ? named[order[i]] : "-") }
-    ' "$g/out"
-  }
-  # The prerequisites tests/graded_exercises.txt gives exercise $1's own code ("@name x y").
+  # The tests a graded_exercises.txt row lists exercise $1 for: its patterns, one a line.
+  rows_of() { awk -v e="$1" '{ sub(/#.*/, "") } NF >= 2 && $1 !~ /^[@!]/ { for (i = 2; i <= NF; i++) if ($i == e) print $1 }' tests/graded_exercises.txt; }
   prerequisites() { awk -v e="@$1" '{ sub(/#.*/, "") } $1 == e { for (i = 2; i <= NF; i++) print $i }' tests/graded_exercises.txt 2>/dev/null; }
 
-  echo "grader: $lab, ${#all[@]} exercises; building the graded copy in $g"
-  mirror
-  compile || exit 1
-  local -A stubbed_fails=() pattern_of=()
+  local start=$SECONDS
+  echo "grader: $lab, ${#all[@]} exercises, each stubbed alone against every test of label $short; building in $g"
+  local -A own=() failed_of=()
+  local measured="$g/$lab.measured" t state named secs pat
+  : >"$measured"
   for entry in "${all[@]}"; do
     IFS=$'\037' read -r name file line hint tests <<<"$entry"
-    pattern_of[$name]="$tests"
-    if [ -z "$tests" ]; then
-      echo "FAIL $name ($file:$line): its marker names no test (\"Checked by Suite.Test.\")"
-      failures=$((failures + 1))
-      continue
-    fi
-    run_tests "$tests" "complete"
-    local ran bad
-    ran=$(results | wc -l)
-    bad=$(results | awk '$2 != "ok" { print $1 }' | head -n 5 | tr '\n' ' ')
-    if ((ran == 0)) || [ -n "$bad" ]; then
-      echo "FAIL $name: with the complete lab, tests named by the exercise fail or none ran ($tests): $bad"
-      failures=$((failures + 1))
-    else
-      echo "ok   $name: complete lab passes all $ran tests ($tests)"
-    fi
-  done
-  # (a) only e stubbed: the tests that fail and name e.
-  for name in "${names[@]}"; do
-    [ -n "${pattern_of[$name]}" ] || continue
+    own[$name]="$tests"
     mirror "$name"
     compile || { failures=$((failures + 1)); continue; }
-    run_tests "${pattern_of[$name]}" "$name"
-    stubbed_fails[$name]=$(results | awk -v e="$name" '$2 == "failed" && $3 == e { print $1 }' | tr '\n' ' ')
-    if [ -z "${stubbed_fails[$name]}" ]; then
-      echo "FAIL $name: stubbed alone, no test it names fails naming it first:"
-      results | sed 's/^/       /' | head -n 8
-      failures=$((failures + 1))
+    label_run "$name" || { failures=$((failures + 1)); continue; }
+    local n_failed=0 n_wrong=0 ran=0 wrong=""
+    failed_of[$name]=""
+    while IFS=$'\t' read -r t state named secs; do
+      ran=$((ran + 1))
+      [ "$state" = failed ] || continue
+      n_failed=$((n_failed + 1))
+      failed_of[$name]+="$t "
+      printf '%s\t%s\t%s\n' "$name" "$t" "$named" >>"$measured"
+      if [ "$named" != "$name" ]; then
+        n_wrong=$((n_wrong + 1))
+        wrong+="       $t names ${named/#-/nothing}${named/#done/ (\"every exercise this test needs is done\")}"$'\n'
+      fi
+    done <"$g/runs/$name/results.tsv"
+    if [ -n "$rows" ]; then
+      echo "     $name: $n_failed of $ran tests fail"
+      continue
     fi
+    if ((n_failed == 0)); then
+      echo "FAIL $name ($file:$line): stubbed alone, none of the $ran tests of $short fails"
+      failures=$((failures + 1))
+    elif ((n_wrong)); then
+      echo "FAIL $name: stubbed alone, $n_failed of $ran tests fail and $n_wrong of them do not name it (tests/graded_exercises.txt):"
+      printf '%s' "$wrong" | head -n 20
+      failures=$((failures + 1))
+    else
+      echo "ok   $name: stubbed alone, $n_failed of $ran tests fail, every one naming it ($((SECONDS - start)) s so far)"
+    fi
+    # (b) every row listing e matches only tests that failed.
+    while read -r pat; do
+      [ -n "$pat" ] || continue
+      while IFS=$'\t' read -r t state named secs; do
+        # shellcheck disable=SC2053
+        [[ "$t" == $pat ]] || continue
+        [[ " ${failed_of[$name]} " == *" $t "* ]] && continue
+        echo "FAIL $name: tests/graded_exercises.txt lists it for $pat, but $t $state with it stubbed"
+        failures=$((failures + 1))
+      done <"$g/runs/$name/results.tsv"
+    done < <(rows_of "$name")
   done
-  # (b) only e (and its code's prerequisites) solved: one of the tests of (a) passes.
+  if [ -n "$rows" ]; then
+    mirror
+    compile >/dev/null || true
+    echo "# ---- $short: measured by scripts/exercise.sh --prove BUILD $short --rows"
+    awk -F '\t' '{ ex[$2] = ex[$2] " " $1 } END { for (t in ex) print t ex[t] }' "$measured" | sort
+    exit 0
+  fi
+  # (c) only e (and its code's prerequisites) solved: one of its own failing tests passes.
   local -a table=() others
-  local t iso pre
+  local iso pre checked
   for name in "${names[@]}"; do
-    [ -n "${stubbed_fails[$name]:-}" ] || continue
+    checked=""
+    for t in ${failed_of[$name]:-}; do
+      for pat in ${own[$name]}; do
+        # shellcheck disable=SC2053
+        if [[ "$t" == $pat ]]; then checked+="$t,"; break; fi
+      done
+    done
+    if [ -z "$checked" ]; then
+      [ -n "${failed_of[$name]:-}" ] && { echo "FAIL $name: none of its own tests (${own[$name]}) fails with it stubbed"; failures=$((failures + 1)); }
+      continue
+    fi
     pre=$(prerequisites "$name" | tr '\n' ' ')
     pre="${pre% }"
     others=()
@@ -590,11 +625,10 @@ prove() {
     done
     mirror "${others[@]}"
     compile || { failures=$((failures + 1)); continue; }
-    run_tests "${stubbed_fails[$name]}" "only-$name"
-    iso=$(results | awk '$2 == "ok" { print $1 }' | head -n 1)
+    label_run "only-$name" --only "$checked" || { failures=$((failures + 1)); continue; }
+    iso=$(awk -F '\t' '$2 == "passed" { print $1; exit }' "$g/runs/only-$name/results.tsv")
     if [ -z "$iso" ]; then
-      echo "FAIL $name: solved with every other exercise of $lab stubbed${pre:+ but $pre}, none of ${stubbed_fails[$name]}passes:"
-      results | sed 's/^/       /' | head -n 8
+      echo "FAIL $name: solved with every other exercise of $lab stubbed${pre:+ but $pre}, none of ${checked%,} passes"
       failures=$((failures + 1))
     else
       table+=("$(printf '%-18s %s%s' "$name" "$iso" "${pre:+ (with the prerequisites of its code solved: $pre)}")")
@@ -603,14 +637,15 @@ prove() {
   mirror  # back to the complete lab
   compile >/dev/null || true
   if ((${#table[@]})); then
-    echo "isolation (exercise → a test that fails with only it stubbed, naming it, and passes with only it solved):"
+    echo "isolation (exercise → one of its own tests that passes with only it solved):"
     printf '  %s\n' "${table[@]}"
   fi
+  echo "grader: $((SECONDS - start)) s; the failing tests of each run: $measured, their logs: $g/runs/"
   if ((failures)); then
     echo "grader: $failures problem(s); build log: $log"
     exit 1
   fi
-  echo "grader: every exercise of $lab is graded by a test that isolates it"
+  echo "grader: every exercise of $lab stubbed alone fails tests of $short that all name it, and a test isolates it"
 }
 
 case "${1:-}" in
@@ -647,8 +682,9 @@ case "${1:-}" in
     for_each_copy copy_links
     ;;
   --prove)
-    [ $# -eq 3 ] || die "usage: exercise.sh --prove BUILD_DIR LAB"
-    prove "$2" "$(resolve_lab "$3")"
+    [ $# -eq 3 ] || { [ $# -eq 4 ] && [ "$4" = --rows ]; } || die "usage: exercise.sh --prove BUILD_DIR LAB [--rows]"
+    lab=$(resolve_lab "$3")
+    prove "$2" "$lab" "${4:-}"
     exit 0
     ;;
   "" | -h | --help)

@@ -1,5 +1,7 @@
 // exercise_hints.cpp — linked into every test binary: when a test fails, it names the first
-// unfinished exercise (scripts/exercise.sh) that the test needs, where it is and its hint.
+// unfinished exercise (scripts/exercise.sh) that the test needs, where it is and its hint. Built
+// alone with LAB_EXERCISE_HINT_MAIN it is the command exercise_hint TEST_NAME, which says the same
+// for a test that is not a GoogleTest test (tests/with_exercise_hint.sh runs it when one fails).
 //
 // The labs mark an exercise's code with "// EXERCISE name: hint. Checked by Suite.Test, Suite.*."
 // (a student copy has "// TODO EXERCISE ..." and the stub there) up to "// END EXERCISE". What a
@@ -139,8 +141,23 @@ std::map<std::string, std::string> copy_stubs(const fs::path& root) {
     return stubs;
 }
 
+// The exercises' order, the one the lab READMEs number them in: tests/graded_exercises.txt's
+// "!order name…" rows, one per lab (exercise.sh --list and the course site follow it too).
+std::vector<std::string> exercise_order() {
+    std::vector<std::string> names;
+    std::ifstream in(fs::path(LAB_SOURCE_DIR) / "tests" / "graded_exercises.txt");
+    for (std::string line; std::getline(in, line);) {
+        line.erase(std::min(line.size(), line.find('#')));
+        std::istringstream words(line);
+        std::string first;
+        if (!(words >> first) || first != "!order") continue;
+        for (std::string n; words >> n;) names.push_back(n);
+    }
+    return names;
+}
+
 // Every marker of the project at LAB_SOURCE_DIR, in the labs' order and, within a lab, in the
-// order of `exercise.sh --list` (path, then line). The prover (exercise.sh --prove) builds the
+// order of `exercise.sh --list` ("!order" rows, then path and line). The prover (exercise.sh --prove) builds the
 // tests from a mirror of one lab with exercises stubbed: LAB_EXERCISE_SOURCES names it, and its
 // lab folders are read instead of the project's.
 std::vector<Marker> scan_markers() {
@@ -182,8 +199,13 @@ std::vector<Marker> scan_markers() {
         // unknown (a copy written before .exercise-stubs) is taken at its word.
         m.unfinished = known ? (m.todo || !m.stub.empty()) && m.code == stub : m.todo;
     }
-    std::stable_sort(markers.begin(), markers.end(), [](const Marker& a, const Marker& b) {
+    const std::vector<std::string> order = exercise_order();
+    const auto rank = [&](const Marker& m) {
+        return std::find(order.begin(), order.end(), m.name) - order.begin();
+    };
+    std::stable_sort(markers.begin(), markers.end(), [&](const Marker& a, const Marker& b) {
         if (a.lab != b.lab) return a.lab < b.lab;
+        if (rank(a) != rank(b)) return rank(a) < rank(b);
         const std::string fa = a.file.rfind("shaders/", 0) == 0 ? a.file.substr(8) : a.file;
         const std::string fb = b.file.rfind("shaders/", 0) == 0 ? b.file.substr(8) : b.file;
         const bool sa = fa != a.file, sb = fb != b.file;  // a lab's folder before its shaders
@@ -201,7 +223,8 @@ std::vector<std::pair<std::string, std::vector<std::string>>> needs_table() {
         line.erase(std::min(line.size(), line.find('#')));
         std::istringstream words(line);
         std::string pattern;
-        if (!(words >> pattern) || pattern[0] == '@') continue;  // "@e x…": what e's own code needs, not a test
+        // "@e x…": what e's own code needs, "!order …": the exercises' order; neither is a test
+        if (!(words >> pattern) || pattern[0] == '@' || pattern[0] == '!') continue;
         std::vector<std::string> names;
         for (std::string n; words >> n;) names.push_back(n);
         rows.emplace_back(pattern, names);
@@ -213,55 +236,62 @@ bool matches(const std::string& pattern, const std::string& test) {
     return fnmatch(pattern.c_str(), test.c_str(), 0) == 0;
 }
 
+// What test `full` (Suite.Test, or a CTest name such as lab4_smoke_stress) needs, printed as the
+// grader's hint: the first unfinished exercise it needs, or that every one is done. `pictures`:
+// the test writes pictures (a render test) and the line saying where they are follows.
+void print_hint(const std::string& full, bool pictures) {
+    static const std::vector<Marker> markers = scan_markers();
+    static const auto table = needs_table();
+
+    std::vector<std::string> graded, needed;
+    for (const Marker& m : markers)
+        if (std::any_of(m.tests.begin(), m.tests.end(), [&](const std::string& p) { return matches(p, full); }))
+            graded.push_back(m.name);
+    needed = graded;
+    for (const auto& [pattern, names] : table)
+        if (matches(pattern, full)) needed.insert(needed.end(), names.begin(), names.end());
+    if (needed.empty()) return;  // a test of no exercise: nothing to say about them
+
+    // The exercises it needs in the labs' order, each once: an unfinished copy of an exercise
+    // (a lab carries an earlier lab's files) stands for it, else its first lab's; the order is
+    // that of the exercise's own (first) lab.
+    std::vector<const Marker*> order;
+    for (const Marker& m : markers) {
+        if (std::find(needed.begin(), needed.end(), m.name) == needed.end()) continue;
+        auto same = std::find_if(order.begin(), order.end(), [&](const Marker* o) { return o->name == m.name; });
+        if (same == order.end()) order.push_back(&m);
+        else if (m.unfinished && !(*same)->unfinished) *same = &m;
+    }
+    const auto is_graded = [&](const Marker* m) {
+        return std::find(graded.begin(), graded.end(), m->name) != graded.end();
+    };
+    const auto first = std::find_if(order.begin(), order.end(), [](const Marker* m) { return m->unfinished; });
+    if (first != order.end()) {
+        const Marker& m = **first;
+        std::printf("[ exercise ] this test needs `%s`, still the stub: %s:%d\n             Hint: %s\n",
+                    m.name.c_str(), m.file.c_str(), m.line, m.hint.c_str());
+        for (const Marker* g : order)
+            if (is_graded(g) && g != &m)
+                std::printf("[ exercise ] it also grades `%s` (%s:%d): finish `%s` first\n", g->name.c_str(),
+                            g->file.c_str(), g->line, m.name.c_str());
+    } else {
+        std::string names;
+        for (const Marker* m : order) names += (names.empty() ? "" : ", ") + m->name;
+        std::printf("[ exercise ] every exercise this test needs is done (%s)\n", names.c_str());
+        for (const Marker* g : order)
+            if (is_graded(g))
+                std::printf("[ exercise ] compare your `%s` with its hint: %s:%d\n             Hint: %s\n",
+                            g->name.c_str(), g->file.c_str(), g->line, g->hint.c_str());
+    }
+    // tests/reference/image_compare.h writes them left to right in this order.
+    if (pictures) std::printf("[ exercise ] pictures (expected | actual | difference): build/test_output/\n");
+}
+
+#ifndef LAB_EXERCISE_HINT_MAIN
 class ExerciseHints : public ::testing::EmptyTestEventListener {
     void OnTestEnd(const ::testing::TestInfo& info) override {
         if (!info.result()->Failed()) return;
-        static const std::vector<Marker> markers = scan_markers();
-        static const auto table = needs_table();
-        const std::string full = std::string(info.test_suite_name()) + "." + info.name();
-
-        std::vector<std::string> graded, needed;
-        for (const Marker& m : markers)
-            if (std::any_of(m.tests.begin(), m.tests.end(), [&](const std::string& p) { return matches(p, full); }))
-                graded.push_back(m.name);
-        needed = graded;
-        for (const auto& [pattern, names] : table)
-            if (matches(pattern, full)) needed.insert(needed.end(), names.begin(), names.end());
-        if (needed.empty()) return;  // a test of no exercise: nothing to say about them
-
-        // The exercises it needs in the labs' order, each once: an unfinished copy of an exercise
-        // (a lab carries an earlier lab's files) stands for it, else its first lab's; the order is
-        // that of the exercise's own (first) lab.
-        std::vector<const Marker*> order;
-        for (const Marker& m : markers) {
-            if (std::find(needed.begin(), needed.end(), m.name) == needed.end()) continue;
-            auto same = std::find_if(order.begin(), order.end(), [&](const Marker* o) { return o->name == m.name; });
-            if (same == order.end()) order.push_back(&m);
-            else if (m.unfinished && !(*same)->unfinished) *same = &m;
-        }
-        const auto is_graded = [&](const Marker* m) {
-            return std::find(graded.begin(), graded.end(), m->name) != graded.end();
-        };
-        const auto first = std::find_if(order.begin(), order.end(), [](const Marker* m) { return m->unfinished; });
-        if (first != order.end()) {
-            const Marker& m = **first;
-            std::printf("[ exercise ] this test needs `%s`, still the stub: %s:%d\n             Hint: %s\n",
-                        m.name.c_str(), m.file.c_str(), m.line, m.hint.c_str());
-            for (const Marker* g : order)
-                if (is_graded(g) && g != &m)
-                    std::printf("[ exercise ] it also grades `%s` (%s:%d): finish `%s` first\n", g->name.c_str(),
-                                g->file.c_str(), g->line, m.name.c_str());
-        } else {
-            std::string names;
-            for (const Marker* m : order) names += (names.empty() ? "" : ", ") + m->name;
-            std::printf("[ exercise ] every exercise this test needs is done (%s)\n", names.c_str());
-            for (const Marker* g : order)
-                if (is_graded(g))
-                    std::printf("[ exercise ] compare your `%s` with its hint: %s:%d\n             Hint: %s\n",
-                                g->name.c_str(), g->file.c_str(), g->line, g->hint.c_str());
-        }
-        // tests/reference/image_compare.h writes them left to right in this order.
-        std::printf("[ exercise ] pictures (expected | actual | difference): build/test_output/\n");
+        print_hint(std::string(info.test_suite_name()) + "." + info.name(), true);
     }
 };
 
@@ -270,5 +300,19 @@ class ExerciseHints : public ::testing::EmptyTestEventListener {
     ::testing::UnitTest::GetInstance()->listeners().Append(new ExerciseHints);
     return true;
 }();
+#endif
 
 }  // namespace
+
+#ifdef LAB_EXERCISE_HINT_MAIN
+// exercise_hint TEST_NAME: the same hint for a test that is not a GoogleTest test (a smoke run, a
+// soak, the random scenes): tests/with_exercise_hint.sh prints it when that test fails.
+int main(int argc, char** argv) {
+    if (argc != 2 || argv[1][0] == '-') {
+        std::fprintf(stderr, "usage: exercise_hint TEST_NAME (the CTest name): the exercises it needs, as a failing test names them\n");
+        return argc == 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") ? 0 : 2;
+    }
+    print_hint(argv[1], false);
+    return 0;
+}
+#endif
