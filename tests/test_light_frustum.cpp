@@ -59,7 +59,7 @@ TEST(LightFrustum, CasterBesideTheLightOverAHugeFloor) {
     EXPECT_FALSE(can_shadow_from(floor, caster, light));
     EXPECT_TRUE(can_shadow_from(caster, floor, light));
     const LightFrustum f = fit_point(light, {caster});
-    EXPECT_LE(f.near_plane, 0.8);   // the caster's nearest depth (Chebyshev distance 0.8)
+    EXPECT_LE(f.near_plane, 0.8);   // the caster's nearest depth in the map (0.8)
     EXPECT_GE(f.far_plane, 1.2);    // its farthest
     EXPECT_LE(f.far_plane, 1.2 * 1.5 + 1e-12);
     // A spot pointing down the same way: the same caster is inside its depth range.

@@ -26,6 +26,10 @@ enum class SamplerFields { Filter, Wrap, Mipmaps, Anisotropy };
 std::vector<std::string> sampler_problems(const VkSamplerCreateInfo& got, const lab::SamplerDesc& desc,
                                           float anisotropy, SamplerFields which);
 
+// The format a map is stored in: `srgb_encoded` for a colour map (its bytes sRGB-encoded, as image
+// files store them), else a data map (its bytes plain numbers): what the device must read them as.
+VkFormat map_format(bool srgb_encoded);
+
 // Level 0 of a 2D colour image (`width` × `height`, in SHADER_READ_ONLY_OPTIMAL, made with
 // TRANSFER_SRC usage) as the device converts its texels to numbers, RGBA floats row by row. The
 // image is left in TRANSFER_SRC_OPTIMAL.
