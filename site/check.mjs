@@ -210,13 +210,13 @@ async function visit(edition) {
     }
     await context.close();
   }
-  return { pages, seen, editionLabs };
+  return { pages, seen, editionLabs, expectedDiffs };
 }
 
 for (const edition of editions) {
   const { dir, student } = edition;
   const tag = student ? `student lab ${student}` : 'instructors';
-  const { pages, seen, editionLabs } = await visit(edition);
+  const { pages, seen, editionLabs, expectedDiffs } = await visit(edition);
   const pagesJson = JSON.parse(fs.readFileSync(path.join(dir, 'pages.json'), 'utf8'));
   const fail = (name, what) => problems.push(`${name} (${tag}): ${what}`);
 
