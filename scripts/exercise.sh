@@ -255,11 +255,13 @@ reference_libs() {
       rm "$cache/vulkan_reference.o"
       ar rcs "$cache/libcpu_reference.a" "$cache"/*.o
       touch "$cache/done"
+      # Only the newest state's libraries are kept.
+      find "$root/build/student-reference" -mindepth 1 -maxdepth 1 -type d ! -name "$key" -exec rm -rf {} +
     fi
+    mkdir -p "$out/tests/reference/lib"  # inside the lock: another state's copy may prune this one's
+    cp "$cache/libcpu_reference.a" "$out/tests/reference/lib/"
+    if ((n >= 3)); then cp "$cache/libreference_vulkan.a" "$out/tests/reference/lib/"; fi
   ) 9>"$root/build/student-reference/lock"
-  mkdir -p "$out/tests/reference/lib"
-  cp "$cache/libcpu_reference.a" "$out/tests/reference/lib/"
-  if ((n >= 3)); then cp "$cache/libreference_vulkan.a" "$out/tests/reference/lib/"; fi
 }
 
 # Paths on stdin, sorted, without those inside another one given (a folder stands for its files).
