@@ -568,7 +568,11 @@ prove() {
       printf '%s\t%s\t%s\n' "$name" "$t" "$named" >>"$measured"
       if [ "$named" != "$name" ]; then
         n_wrong=$((n_wrong + 1))
-        wrong+="       $t names ${named/#-/nothing}${named/#done/ (\"every exercise this test needs is done\")}"$'\n'
+        case "$named" in
+          -) wrong+="       $t names no exercise"$'\n' ;;
+          done) wrong+="       $t says every exercise it needs is done"$'\n' ;;
+          *) wrong+="       $t names $named"$'\n' ;;
+        esac
       fi
     done <"$g/runs/$name/results.tsv"
     if [ -n "$rows" ]; then
