@@ -172,7 +172,7 @@ Verdict expect_matches(const std::string& scene_file, const std::string& name, b
             if (!hit.hit) continue;
             const lab::MaterialDesc& m = scene.materials.at(hit.material);
             const ref::RefTexture t = ref::load_texture(m.albedo_map, false);
-            const glm::dvec2 uv = hit.uv * glm::dvec2(m.uv_scale) + glm::dvec2(m.uv_offset);
+            const glm::dvec2 uv = ref::material_uv(m, hit.uv);
             const int tx = int(std::floor(uv.x * t.levels[0].width)), ty = int(std::floor(uv.y * t.levels[0].height));
             reference.object_id[i] = (reference.object_id[i] * 7919 + tx * 131 + ty) & 0x3fffffff;
         }

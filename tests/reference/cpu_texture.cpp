@@ -321,6 +321,10 @@ std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int wi
     };
 }
 
+glm::dvec2 material_uv(const lab::MaterialDesc& m, glm::dvec2 uv) {
+    return uv * glm::dvec2(m.uv_scale) + glm::dvec2(m.uv_offset);
+}
+
 ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool supersample_level0,
                             const SamplingVariant& variant, std::shared_ptr<const ShadowCasters> shadows) {
     const std::shared_ptr<TexturedScene> data = textured_scene(scene, width, height, supersample_level0);
@@ -346,8 +350,8 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
         glm::dvec2 dx(0.0), dy(0.0);
         glm::dvec3 dpx(0.0), dpy(0.0);
         if (!data->level0) uv_derivatives(*data, hit, tri, &dx, &dy, &dpx, &dpy);
-        const glm::dvec2 scale(m.uv_scale), offset(m.uv_offset);
-        const glm::dvec2 uv = hit.uv * scale + offset;
+        const glm::dvec2 scale(m.uv_scale);
+        const glm::dvec2 uv = material_uv(m, hit.uv);
         dx *= scale;
         dy *= scale;
         lab::SamplerDesc sampler = m.sampler;

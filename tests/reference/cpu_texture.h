@@ -86,6 +86,9 @@ glm::dvec2 lod_bounds(const TextureLevel& level0, glm::dvec2 dx, glm::dvec2 dy);
 glm::dvec4 sample(const RefTexture& texture, const lab::SamplerDesc& desc, glm::dvec2 uv, glm::dvec2 dx,
                   glm::dvec2 dy, const SamplingVariant& variant = {});
 
+// The texture coordinates material `m`'s maps are read at, for the mesh's `uv` (docs/scene-format.md).
+glm::dvec2 material_uv(const lab::MaterialDesc& m, glm::dvec2 uv);
+
 // A ShadeFn for lab 3 (Phong or flat shading): lab 2's equation with the material's textured terms
 // as docs/lighting.md and docs/scene-format.md define them (the maps at the material's transformed
 // UV, "distorted" sampling included). The UV derivatives come from ray differentials of a
