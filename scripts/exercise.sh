@@ -596,7 +596,9 @@ prove() {
     else
       echo "ok   $name: stubbed alone, $n_failed of $ran tests fail, every one naming it ($((SECONDS - start)) s so far)"
     fi
-    # (b) every row listing e matches only tests that failed.
+    # (b) every row listing e matches only tests that failed (rows not measured yet, GRADER_SCOPE=own,
+    # are declarations: not held to this).
+    [ "${GRADER_SCOPE:-label}" = own ] && continue
     while read -r pat; do
       [ -n "$pat" ] || continue
       while IFS=$'\t' read -r t state named secs; do
