@@ -229,6 +229,9 @@ def prove(commit, exercises):
 
 
 def main(argv):
+    if argv[:1] in (["-h"], ["--help"]):  # the docstring above, nothing run
+        print(__doc__.strip())
+        return 0
     if argv and argv[0] == "--prove":
         if len(argv) > 2:
             fail("usage: check_answers.py --prove [COMMIT]")
