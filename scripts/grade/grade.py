@@ -147,11 +147,11 @@ def run_limited(cmd, wall):
     return (None if fired else p.returncode), out
 
 
-def chown_tree(path, job=None):
-    """path (in job, default: path is the job) made the job's sandbox user's."""
+def chown_tree(path):
+    """path (a job's folder) made its sandbox user's."""
     if os.geteuid() != 0:
         return
-    uid = job_uid(job or path)
+    uid = job_uid(path)
     subprocess.run(["chown", "-R", "-h", f"{uid}:{uid}", path], check=True)
 
 
@@ -251,7 +251,7 @@ def pristine(lab, cache_root, jobs):
     os.makedirs(os.path.join(work, "build"))
     chown_tree(work)
     # The students' build type (scripts/setup.sh), without its -g: GCC makes the same code with and
-    # without debug information, and without it every variant copies and links a third of the bytes.
+    # without debug information, and without it every variant copies and links fewer bytes.
     code, out = run_limited(sandbox(tmp, "setup", cpu=3600) + ["cmake", "-S", ".", "-B", "build", "-DCMAKE_BUILD_TYPE=RelWithDebInfo",
                                                               "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -DNDEBUG",
                                                               "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -DNDEBUG"], 600)
@@ -815,7 +815,7 @@ def grade_submission(g, entry, name, outdir, progress):
                     r = s.isolated[ex]
                     ok = r["build"] == "ok" and all(r["tests"].get(t, {}).get("status") == "ok" for t in next(e for e in g.exercises if e["name"] == ex)["tests"])
                     progress(f"{name}: {ex} {'passes' if ok else 'fails'} ({time.time() - t0:.0f} s)")
-        compile_bad, timed, crashed = [], [], []
+        compile_bad, stopped = [], []  # stopped: the exercises with a test that crashed or hung
         for e in g.exercises:
             n = e["name"]
             if s.region[n] == "missing":
@@ -834,7 +834,8 @@ def grade_submission(g, entry, name, outdir, progress):
             s.grades[n] = 0 if failing else 1
             for t in failing:
                 st = r["tests"].get(t, {}).get("status", "not-run")
-                (timed if st == "timeout" else crashed if st == "crashed" else []).append(f"{n} ({t})")
+                if st in ("timeout", "crashed") and n not in stopped:
+                    stopped.append(n)
             if failing:
                 s.messages[n] = f"`{n}` fails {len(failing)} of its {len(e['tests'])} tests (run with the solution of every other exercise):\n\n" + \
                     "\n".join(f"{t}: {r['tests'].get(t, {}).get('status', 'not-run')}\n{test_message(r['tests'].get(t, {}).get('output', ''))}" for t in failing)
@@ -842,7 +843,6 @@ def grade_submission(g, entry, name, outdir, progress):
                     s.messages[n] = f"`{n}` is still the stub.\n" + s.messages[n]
             else:
                 s.messages[n] = f"`{n}`: all {len(e['tests'])} tests that check it pass ({', '.join(e['tests'][:6])}{' …' if len(e['tests']) > 6 else ''})."
-        order = [e["name"] for e in g.exercises]
         missing = [e["name"] for e in g.exercises if s.region[e["name"]] == "missing"]
         if missing:
             s.notes.append("markers deleted (not done): " + " ".join(missing))
@@ -852,7 +852,6 @@ def grade_submission(g, entry, name, outdir, progress):
         # from run to run (code that allocates without end meets the time limit or the memory
         # limit first, depending on the machine's load): grades.csv names the exercises only, so a
         # regrade gives the same file; each test's own ending is in the report and results.json.
-        stopped = sorted({x.split(" ")[0] for x in timed + crashed}, key=order.index)
         if stopped:
             s.notes.append("did not finish (a crash or the time limit): " + " ".join(stopped))
         if s.outside:
