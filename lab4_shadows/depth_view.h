@@ -22,10 +22,10 @@ public:
 
     // Draws the layers of `target` (a depth image in DEPTH_STENCIL_READ_ONLY_OPTIMAL, e.g. a cube
     // map's six faces) as squares at the bottom centre of a frame of `extent`, three to a row, the
-    // first row on top. `perspective`: (a, b) of a perspective projection's depth (shadow_maps.cpp),
-    // turned back into the distance z and spread from near (black) to far (white), else nearly
-    // everything looks white; b = 0: the depth is shown as it is (orthographic).
-    void draw(VkCommandBuffer cmd, const LayeredTarget& target, glm::vec2 perspective, VkExtent2D extent);
+    // first row on top. `clip_to_view`: the inverse of the map's projection; each stored depth is
+    // taken back through it to a distance and spread from near (black) to far (white), else a
+    // perspective map looks nearly all white. The identity shows the depth as stored (orthographic).
+    void draw(VkCommandBuffer cmd, const LayeredTarget& target, const glm::mat4& clip_to_view, VkExtent2D extent);
 
 private:
     const lab::VulkanContext& vk_;

@@ -139,8 +139,7 @@ LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, d
 
 LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters) {
     // A box's nearest depth over the faces: its nearest point's distance along the axis of the face
-    // that point falls in (exercise cube_face_depth: which distance is that?); its farthest depth
-    // at most its farthest corner's.
+    // that point falls in; its farthest depth at most its farthest corner's.
     const auto nearest = [&](const Box& b) {
         const glm::dvec3 gap = glm::max(glm::max(b.lo - position, position - b.hi), glm::dvec3(0.0));
         return std::max({gap.x, gap.y, gap.z});

@@ -2,6 +2,8 @@
 
 #include "shader.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -151,8 +153,7 @@ bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(ligh
 
 void ShadowMaps::draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
-    const GpuShadow& gpu = maps_[size_t(slot)].gpu;  // y, z: the perspective depth constants
-    view.draw(cmd, maps_[size_t(slot)].depth, glm::vec2(gpu.params.y, gpu.params.z), extent);
+    view.draw(cmd, maps_[size_t(slot)].depth, maps_[size_t(slot)].clip_to_view, extent);
 }
 
 // Change tracking: everything a map depends on, as numbers. The light's placement and the
@@ -258,6 +259,9 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
     // normal_offset / resolution.
     map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
+    // The map view's way back from depth to distance: only the depth row matters, so any field of view does.
+    map.clip_to_view = perspective ? glm::mat4(glm::inverse(glm::perspectiveRH_ZO(glm::radians(90.0), 1.0, f.near_plane, f.far_plane)))
+                                   : glm::mat4(1.0f);
     // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled (grows
     // with how steeply the triangle's depth changes across a texel), both as the device computes
     // them, so bounded in world units (depthBiasClamp, README "Bias"): at most max(1, slope_bias)

@@ -72,6 +72,7 @@ private:
         TranslucentShadows::Map translucent;  // translucent scenes: the transmittance map beside it
         std::vector<float> key;  // what the map was rendered from (change tracking)
         GpuShadow gpu{};
+        glm::mat4 clip_to_view{1.0f};  // the map view's (depth_view.h): its projection, inverted
     };
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;

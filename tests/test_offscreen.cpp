@@ -67,7 +67,7 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
             clear_layers(f.cmd, cube, depths);
         }));
-        depth_view.draw(frame.cmd, cube, glm::vec2(0.0f), frame.extent);
+        depth_view.draw(frame.cmd, cube, glm::mat4(1.0f), frame.extent);
         frame_target.end_frame();
         lab::Image8 image = frame_target.read_pixels();
         const int xs[3] = {56, 99, 142}, ys[2] = {134, 177};
@@ -76,14 +76,15 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
         EXPECT_EQ(red_at(image, 5, 5), 0) << "outside the squares: the clear colour";
         EXPECT_EQ(red_at(image, 99, 100), 0) << "above the squares";
 
-        // Frame 2: a perspective map (near 1, far 11: a = b = 1.1 in depth_view.h's terms), cleared
-        // to the depth of z = 3.5: shown as (z − near) / (far − near) = 0.25. One square of 0.8 NDC:
-        // x ∈ [−0.405, 0.395], y ∈ [0.18, 0.98] → centre pixel (99, 158).
-        const float a = 1.1f, b = 1.1f;
+        // Frame 2: a perspective map (near 1, far 11), cleared to the depth GLM's projection gives the
+        // point 3.5 along the view axis: shown as (z − near) / (far − near) = 0.25. One square of
+        // 0.8 NDC: x ∈ [−0.405, 0.395], y ∈ [0.18, 0.98] → centre pixel (99, 158).
+        const glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 1.0f, 11.0f);
+        const glm::vec4 clip = projection * glm::vec4(0.0f, 0.0f, -3.5f, 1.0f);
         ASSERT_TRUE(frame_target.begin_frame(glm::vec3(0.0f), frame, [&](const lab::Frame& f) {
-            clear_layers(f.cmd, flat, {a - b / 3.5f});
+            clear_layers(f.cmd, flat, {clip.z / clip.w});
         }));
-        depth_view.draw(frame.cmd, flat, glm::vec2(a, b), frame.extent);
+        depth_view.draw(frame.cmd, flat, glm::inverse(projection), frame.extent);
         frame_target.end_frame();
         image = frame_target.read_pixels();
         EXPECT_NEAR(red_at(image, 99, 158), srgb8(0.25), 1);

@@ -3,8 +3,8 @@
 // the vertex index (no vertex buffer) over the rectangle given in normalized device coordinates.
 
 layout(push_constant) uniform ViewConstants {
-    vec4 rect;         // x0, y0, x1, y1
-    vec4 perspective;  // depth_view.frag
+    vec4 rect;          // x0, y0, x1, y1
+    mat4 clip_to_view;  // depth_view.frag
 } view;
 
 layout(location = 0) out vec2 out_uv;
