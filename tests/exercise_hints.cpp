@@ -11,8 +11,10 @@
 //                  Hint: which VkFormat does a colour map ...
 //     [ exercise ] it also grades `mip_chain` (lab3_textures/texture.cpp:154): finish `texel_format` first
 // or, when every exercise it needs is done:
-//     [ exercise ] every exercise this test needs is done (texel_format, mip_chain): compare your
-//                  `mip_chain` with the hint: lab3_textures/texture.cpp:154 ...
+//     [ exercise ] every exercise this test needs is done (texel_format, mip_chain), yet it fails: one
+//                  of them is wrong
+//     [ exercise ] compare your `mip_chain` with its hint: lab3_textures/texture.cpp:154 ...
+//     [ exercise ] and your `texel_format`, which it needs: lab3_textures/texture.cpp:28
 //
 // "Done" does not depend on the marker line: an exercise is unfinished while its code (between
 // the marker and END EXERCISE, without whitespace and // comments) is still the stub. The stub's
@@ -275,13 +277,19 @@ void print_hint(const std::string& full, bool pictures) {
                 std::printf("[ exercise ] it also grades `%s` (%s:%d): finish `%s` first\n", g->name.c_str(),
                             g->file.c_str(), g->line, m.name.c_str());
     } else {
+        // Done is not right: the test cannot tell which of them is wrong, so it names them all, the
+        // ones it grades first (a mistake in an exercise it only needs fails it just the same).
         std::string names;
         for (const Marker* m : order) names += (names.empty() ? "" : ", ") + m->name;
-        std::printf("[ exercise ] every exercise this test needs is done (%s)\n", names.c_str());
+        std::printf("[ exercise ] every exercise this test needs is done (%s), yet it fails: one of them is wrong\n",
+                    names.c_str());
         for (const Marker* g : order)
             if (is_graded(g))
                 std::printf("[ exercise ] compare your `%s` with its hint: %s:%d\n             Hint: %s\n",
                             g->name.c_str(), g->file.c_str(), g->line, g->hint.c_str());
+        for (const Marker* g : order)
+            if (!is_graded(g))
+                std::printf("[ exercise ] and your `%s`, which it needs: %s:%d\n", g->name.c_str(), g->file.c_str(), g->line);
     }
     // tests/reference/image_compare.h writes them left to right in this order.
     if (pictures) std::printf("[ exercise ] pictures (expected | actual | difference): build/test_output/\n");
