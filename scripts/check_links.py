@@ -172,7 +172,10 @@ def unlink_missing(top, n, source):
                 where = os.path.relpath(dest, top)
                 if os.path.exists(dest) or not os.path.exists(os.path.join(source, where)):
                     continue
+                into = max([int(k) for k in re.findall(r"lab([0-9]+)_", where)] or [0])
                 mark = ("a later lab, not in this copy" if later_lab(where, n)
+                        else "this lab's lesson as a diff: instructors' material (it shows this lab's answers)"
+                        if where.startswith("docs/diffs") and into == n
                         else "not in this copy; your student site shows the diffs of the labs before this one"
                         if where.startswith("docs/diffs") else "instructors' material, not in this copy")
                 text = re.match(r"!?\[(.*)\]\(", m.group(0), re.S).group(1)

@@ -242,7 +242,7 @@ labs.forEach((lab, i) => {
   const diff = diffs.find((d) => d.b === lab);
   const gallery = pageOf.get(`docs/images/${lab}/README.md`);
   const facts = [
-    diff ? `<a href="${pageOf.get(diff.file)}">the lesson as a diff: ${diff.a} → ${lab}</a>` : 'the first lab: no diff before it',
+    diff ? `<a href="${pageOf.get(diff.file)}">the lesson as a diff: ${diff.a} → ${lab}</a>` : n === 1 ? 'the first lab: no diff before it' : 'its lesson diff: in the instructors\' edition only (it shows this lab\'s answers)',
     gallery ? `<a href="${gallery}">its gallery</a>` : 'no gallery yet',
     '<a href="#graded-exercises">its graded exercises</a>', '<a href="#the-files">its files</a>',
     exists(`docs/tradeoffs/${lab}.csv`) && pageOf.has('docs/tradeoffs.md') ? `<a href="tradeoffs.html#data-${lab}">its time-against-error data</a>` : null,
