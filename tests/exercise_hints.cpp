@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -240,8 +241,8 @@ bool matches(const std::string& pattern, const std::string& test) {
 
 // What test `full` (Suite.Test, or a CTest name such as lab4_smoke_stress) needs, printed as the
 // grader's hint: the first unfinished exercise it needs, or that every one is done. `pictures`:
-// the test writes pictures (a render test) and the line saying where they are follows.
-void print_hint(const std::string& full, bool pictures) {
+// the folder the failing test wrote its pictures to (empty: it wrote none), said on the last line.
+void print_hint(const std::string& full, const std::string& pictures) {
     static const std::vector<Marker> markers = scan_markers();
     static const auto table = needs_table();
 
@@ -292,14 +293,40 @@ void print_hint(const std::string& full, bool pictures) {
                 std::printf("[ exercise ] and your `%s`, which it needs: %s:%d\n", g->name.c_str(), g->file.c_str(), g->line);
     }
     // tests/reference/image_compare.h writes them left to right in this order.
-    if (pictures) std::printf("[ exercise ] pictures (expected | actual | difference): build/test_output/\n");
+    if (!pictures.empty()) std::printf("[ exercise ] pictures (expected | actual | difference): %s/\n", pictures.c_str());
 }
 
 #ifndef LAB_EXERCISE_HINT_MAIN
+// The folder of the newest PNG written under the tests' output (lab_runner.h's test_output_dir)
+// since `since`: where a failing render test left its pictures; empty when it wrote none (a unit
+// test), so that the hint points at pictures only when there are some.
+std::string pictures_since(fs::file_time_type since) {
+    const char* env = std::getenv("LAB_TEST_OUTPUT");
+    const fs::path root = env && *env ? fs::path(env) : fs::path(LAB_BINARY_DIR) / "test_output";
+    std::error_code ec;
+    fs::path newest;
+    fs::file_time_type newest_time = since;
+    for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+        if (!it->is_regular_file(ec) || it->path().extension() != ".png") continue;
+        const fs::file_time_type t = it->last_write_time(ec);
+        if (!ec && t >= newest_time) newest = it->path(), newest_time = t;
+    }
+    if (newest.empty()) return "";
+    const fs::path dir = newest.parent_path();
+    const fs::path relative = dir.lexically_relative(LAB_SOURCE_DIR);  // as the README writes it
+    return (relative.empty() || *relative.begin() == ".." ? dir : relative).string();
+}
+
 class ExerciseHints : public ::testing::EmptyTestEventListener {
+    fs::file_time_type started_{};
+    // (50 ms early: the kernel stamps files from a coarser clock than now())
+    void OnTestStart(const ::testing::TestInfo&) override {
+        started_ = fs::file_time_type::clock::now() - std::chrono::milliseconds(50);
+    }
     void OnTestEnd(const ::testing::TestInfo& info) override {
         if (!info.result()->Failed()) return;
-        print_hint(std::string(info.test_suite_name()) + "." + info.name(), true);
+        print_hint(std::string(info.test_suite_name()) + "." + info.name(), pictures_since(started_));
     }
 };
 
@@ -320,7 +347,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "usage: exercise_hint TEST_NAME (the CTest name): the exercises it needs, as a failing test names them\n");
         return argc == 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") ? 0 : 2;
     }
-    print_hint(argv[1], false);
+    print_hint(argv[1], "");
     return 0;
 }
 #endif
