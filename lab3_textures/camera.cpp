@@ -30,7 +30,7 @@ glm::dmat4 look_at_camera_to_world(const glm::dvec3& eye, const glm::dvec3& targ
     const glm::dvec3 f = normalize_or(target - eye, {0.0, 0.0, -1.0});
     glm::dvec3 up = normalize_or(up_hint, {0.0, 1.0, 0.0});
 
-    // right = f × up is zero when f is parallel to up (looking straight down
+    // f × up is zero when f is parallel to up (looking straight down
     // or up): then any up perpendicular to f will do. We pick ±Z so that a
     // top-down view has world −Z at the top of the image (a map's "north").
     if (glm::length(glm::cross(f, up)) < 1e-6) {

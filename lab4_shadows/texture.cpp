@@ -21,9 +21,8 @@ uint8_t linear_to_srgb(double c) {
     return uint8_t(std::lround(e * 255.0));
 }
 
-// The image's format says how the sampler turns a texel's bytes into numbers. A _SRGB format
-// decodes them through the sRGB curve before filtering (the spec's "sRGB EOTF"), a _UNORM one
-// divides by 255. The bytes are the same; only their meaning differs.
+// The image's format says how the sampler turns a texel's bytes into the numbers a shader
+// reads. The bytes are the same whatever the format; only their meaning differs.
 VkFormat format_of(TexelEncoding encoding) {
     // EXERCISE texel_format: which VkFormat does a colour map (its bytes sRGB-encoded, as image files store them) get, and which a data map such as specular (its bytes are plain numbers)? Read texture.h's header comment, docs/lighting.md on colour spaces, the Vulkan spec's "Conversion to RGBA" (sRGB). Wrong: textured surfaces look washed out and too bright, their mip levels too light. Checked by TexelFormat.*, Lab3Render.AlbedoImageTimesColour, Lab3Render.AlbedoMapMagnified.
     // STUB: return VK_FORMAT_R8G8B8A8_UNORM;  // every map read as plain numbers

@@ -1,5 +1,5 @@
 #version 450
-// unlit.vert — transform each vertex model → world → camera → clip space.
+// unlit.vert — where each vertex lands on screen (its clip-space position); no lighting.
 
 layout(set = 0, binding = 0) uniform FrameUniforms {
     mat4 view;        // world → camera (the inverse of the camera's pose)

@@ -146,6 +146,29 @@ float smith_g1(float x, float alpha) {
     return c < 1.6 ? (3.535 * c + 2.181 * c * c) / (1.0 + 2.276 * c + 2.577 * c * c) : 1.0;
 }
 
+// The microfacet models' H: the normal a mirror-like facet needs to reflect L into V.
+vec3 microfacet_normal(vec3 N, vec3 V, vec3 L) {
+    const vec3 H = safe_normalize(L + V, N);
+    check(H);
+    return H;
+}
+
+// A highlight: how much of a light the surface sends towards the eye, from 0 to 1, as a cosine
+// raised to the shininess n (the larger n, the smaller and sharper the highlight).
+// EXERCISE blinn_phong: phong_highlight: where does L's mirror image about N point, and how closely does V follow it? blinn_highlight: which direction lies halfway between L and V, and how closely does N follow it? Both: clamped how, narrowed by n how, and what if L + V is zero? Read docs/lighting.md "Lighting models", "Numerical safety" (why power(), not pow(); safe_normalize()). Wrong: shiny materials look matte, the highlight covers the whole lit side or sits in the wrong place, toon highlights vanish. Checked by Lab2Term.BlinnPhongHighlights, Lab2Render.DirectionalLight.
+// STUB: float phong_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
+// STUB: float blinn_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
+float phong_highlight(vec3 N, vec3 V, vec3 L, float n) {
+    const vec3 R = 2.0 * dot(N, L) * N - L;  // reflect(−L, N): L's mirror image about N
+    return power(max(dot(R, V), 0.0), n);
+}
+
+float blinn_highlight(vec3 N, vec3 V, vec3 L, float n) {
+    const vec3 H = safe_normalize(L + V, N);  // halfway between L and V (N if they cancel)
+    return power(max(dot(N, H), 0.0), n);
+}
+// END EXERCISE
+
 // What one light contributes per unit radiance: albedo·diffuse + specular (docs/lighting.md).
 vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
     const float nl = dot(N, L);
@@ -154,18 +177,14 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
     const vec3 a = m.albedo.rgb, s = m.specular.rgb;
     const float n = m.specular.a;
     const float nv = dot(N, V);
-    const vec3 H = safe_normalize(L + V, N);
-    const float nh = max(dot(N, H), 0.0);
-    check(H);
 
     if (LIGHTING_MODEL == MODEL_LAMBERT) return a * nl;
     if (LIGHTING_MODEL == MODEL_PHONG) {
-        const vec3 R = 2.0 * nl * N - L;  // reflect(−L, N)
-        return a * nl + s * power(max(dot(R, V), 0.0), n);
+        return a * nl + s * phong_highlight(N, V, L, n);
     }
     if (LIGHTING_MODEL == MODEL_TOON) {
         const float band = ceil(nl * float(TOON_BANDS)) / float(TOON_BANDS);
-        return a * band + s * (power(nh, n) > 0.5 ? 1.0 : 0.0);
+        return a * band + s * (blinn_highlight(N, V, L, n) > 0.5 ? 1.0 : 0.0);
     }
     vec3 diffuse = a * nl;  // Lambert, unless the model replaces it
     if (LIGHTING_MODEL == MODEL_OREN_NAYAR) {
@@ -185,6 +204,8 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
         diffuse = a * power(nl, k) * pow(max(nv, MIN_COS_VIEW), k - 1.0);
     }
     if (LIGHTING_MODEL == MODEL_COOK_TORRANCE) {
+        const vec3 H = microfacet_normal(N, V, L);
+        const float nh = max(dot(N, H), 0.0);
         const float alpha = max(m.f0.a * m.f0.a, MIN_ALPHA);
         const float nvc = max(nv, MIN_COS_VIEW);
         const vec3 F = m.f0.rgb + (1.0 - m.f0.rgb) * pow(1.0 - clamp(dot(V, H), 0.0, 1.0), 5.0);
@@ -195,6 +216,8 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
         return diffuse + spec;
     }
     if (LIGHTING_MODEL == MODEL_WARD) {
+        const vec3 H = microfacet_normal(N, V, L);
+        const float nh = max(dot(N, H), 0.0);
         const vec3 B = cross(N, T);
         const float ax = m.params.x, ay = m.params.y;
         const float hn = max(nh, MIN_COS_HALF);
@@ -206,10 +229,7 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
     }
     // Blinn-Phong specular (also for Oren-Nayar and Minnaert, which only change the diffuse part).
     check(diffuse);
-    // EXERCISE blinn_phong: the highlight to add to diffuse: how bright where the half vector lines up with N (nh), how does the shininess n narrow it, what colour (s)? Read docs/lighting.md "The default equation", "Numerical safety" (why power(), not pow()). Wrong: shiny materials look matte, the highlight covers the whole lit side, or has the albedo's colour. Checked by Lab2Term.BlinnPhongHighlights, Lab2Render.DirectionalLight.
-    // STUB: return diffuse;  // matte: no highlights
-    return diffuse + s * power(nh, n);
-    // END EXERCISE
+    return diffuse + s * blinn_highlight(N, V, L, n);
 }
 
 // Lab 4: att · the reflectance · the share of the light that reaches P (1 lit, 0 in shadow,
