@@ -171,11 +171,10 @@ TEST(Lab2Term, BlinnPhongHighlights) {
                              "term_highlights");
 }
 // gouraud: the same equation per vertex. The floor is stretched along its normal to (8, 16, 8),
-// which a plane (all at y = 0) does not show: its normal matrix (M₃)⁻ᵀ = diag(1/8, 1/16, 1/8),
-// scaled so its largest element is 1 (docs/lighting.md "The default equation"), is
-// diag(1, 0.5, 1), so the floor's vertex normal reaches lit.vert at length 0.5, in the
-// direction normal_matrix's stub (identity) gives too. Only a shader that normalizes N lights
-// the floor like the reference (N·L, not N·L / 2).
+// which a plane (all at y = 0) does not show: its normal keeps its direction (+Y, which
+// normal_matrix's stub gives too) but, with the normal matrix scaled so its largest element is 1
+// (docs/lighting.md "The default equation"), reaches lit.vert at length 0.5. Only a shader that
+// normalizes N lights the floor like the reference (N·L, not N·L / 2).
 TEST(Lab2Term, GouraudShading) {
     const std::string file = one_term(kTestScenes + "/lab2_directional.json", "term_gouraud", false, "lambert", "gouraud");
     expect_matches_reference(scene_variant(kLab, file, "term_gouraud",
