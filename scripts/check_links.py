@@ -151,6 +151,10 @@ def later_lab(path, n):
                for k in re.findall(r"(?:^|_|-)lab([0-9]+)_", part))
 
 
+# Shared docs that are a later lab's lesson (exercise.sh's left_out leaves them out of earlier copies).
+LESSON_DOCS = {"docs/lighting.md": 2}
+
+
 def unlink_missing(top, n, source):
     """In a student copy of lab n: each link or picture to a path the copy left out (there in the
     project source, not in the copy) becomes plain text, marked as a later lab's or as instructors'
@@ -173,7 +177,7 @@ def unlink_missing(top, n, source):
                 if os.path.exists(dest) or not os.path.exists(os.path.join(source, where)):
                     continue
                 into = max([int(k) for k in re.findall(r"lab([0-9]+)_", where)] or [0])
-                mark = ("a later lab, not in this copy" if later_lab(where, n)
+                mark = ("a later lab, not in this copy" if later_lab(where, n) or LESSON_DOCS.get(where, 0) > n
                         else "this lab's lesson as a diff: instructors' material (it shows this lab's answers)"
                         if where.startswith("docs/diffs") and into == n
                         else "not in this copy; your student site shows the diffs of the labs before this one"

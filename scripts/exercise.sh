@@ -209,6 +209,10 @@ left_out() {
     echo docs/solutions.md  # the instructors' policy: where every answer is, what to hand out when
     # lab 2's Blinn-Phong whole, a benchmark's fixture (bench/speed_goals.sh): an answer until lab 3
     if ((n <= 2)); then echo bench/fixtures/minimal_blinn_phong.frag; fi
+    # Later labs' lessons that live in shared folders: lab 2's lighting doc (lab 1 has no light),
+    # lab 4's part of the reference's interface (its rules for shadows and translucency).
+    if ((n <= 1)); then echo docs/lighting.md; fi
+    if ((n <= 3)); then echo tests/reference/cpu_shadow.h; fi
     later_test_files "$n"
     # The CPU reference's source and its own tests (hand calculations that are the labs' answers):
     # a copy gets the reference prebuilt instead (reference_libs, tests/CMakeLists.txt).
@@ -766,6 +770,9 @@ else
 fi
 mapfile -t gone < <(left_out "$(lab_number "$lab")")
 for p in "${gone[@]}"; do rm -rf "${out:?}/$p"; done
+# The grader's table keeps the copy's labs: a later lab's rows name its tests and exercises.
+awk -v last="# ---- lab $(($(lab_number "$lab") + 1))" 'index($0, last) == 1 { exit } { print }' \
+  "$root/tests/graded_exercises.txt" >"$out/tests/graded_exercises.txt"
 reference_libs "$out" "$(lab_number "$lab")"
 # Links to what was left out become plain text, marked as a later lab's or instructors' material,
 # so every link of the copy works (--check-copy-links).
