@@ -329,11 +329,20 @@ TEST(Lab3PlainSampler, UvScaleAndOffset) {
                                                R"(", "uv_scale": [2.5, 1.5], "uv_offset": [0.3, -0.2], )" + kPlainSampler + "}"),
                    "plain_uv", true);
 }
-// The seed's distorted albedo (its default numbers) at the mesh's own UVs.
+// The seed's distorted albedo (its default numbers) at the mesh's own UVs, then shifted by whole
+// repeats (1, 3): the lab takes them out of uv_offset (leaving uv' = uv, as uv_transform's stub
+// has it too) and hands the shader what they change in the distortion. The README's d and A see
+// uv' + (1, 3): the sine's phase moves by 10·3 and the cosine's by 8·1 (not multiples of 2π),
+// the 0.5× lookup by half a repeat (the 2× one by whole repeats only). A shader that leaves out
+// the phases and the lookups' shifts draws the first picture again, not the reference's second.
 TEST(Lab3PlainSampler, DistortedAlbedo) {
-    expect_matches(plane_scene("plain_distorted", R"({"albedo_map": ")" + binary_map("plain_distorted_albedo.png", 2) +
-                                                      R"(", "sampling": "distorted", )" + kPlainSampler + "}"),
+    const std::string map = binary_map("plain_distorted_albedo.png", 2);
+    expect_matches(plane_scene("plain_distorted", R"({"albedo_map": ")" + map + R"(", "sampling": "distorted", )" + kPlainSampler + "}"),
                    "plain_distorted", true);
+    expect_matches(plane_scene("plain_distorted_whole_offset", R"({"albedo_map": ")" + map +
+                                                                   R"(", "sampling": "distorted", "uv_offset": [1, 3], )" +
+                                                                   kPlainSampler + "}"),
+                   "plain_distorted_whole_offset", true);
 }
 
 TEST(Lab3Render, DistortedSampling) {
