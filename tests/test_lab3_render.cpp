@@ -330,7 +330,7 @@ TEST(Lab3PlainSampler, UvScaleAndOffset) {
                    "plain_uv", true);
 }
 // The seed's distorted albedo (its default numbers) at the mesh's own UVs, then shifted by whole
-// repeats (1, 3): the lab takes them out of uv_offset (leaving uv' = uv, as uv_transform's stub
+// repeats (1, 3): the lab takes them out of uv_offset (leaving uv' = uv, as texture_terms' stub
 // has it too) and hands the shader what they change in the distortion. The README's d and A see
 // uv' + (1, 3): the sine's phase moves by 10·3 and the cosine's by 8·1 (not multiples of 2π),
 // the 0.5× lookup by half a repeat (the 2× one by whole repeats only). A shader that leaves out

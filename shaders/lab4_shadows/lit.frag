@@ -74,16 +74,12 @@ vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
     // END EXERCISE
 }
 
-// The material with its maps read at the material's tiled and shifted UVs (exercises uv_transform
-// and texture_terms; docs/lighting.md, "Lab 3: textured terms"); a map the material lacks is not
-// sampled at all.
+// The material with its maps read at the material's tiled and shifted UVs (exercise texture_terms;
+// docs/lighting.md, "Lab 3: textured terms"); a map the material lacks is not sampled at all.
 Material textured(Material m, vec2 uv, vec3 P) {
-    // EXERCISE uv_transform: the UV the maps are read at: uv tiled by uv_scale and shifted by uv_offset: which comes first, where are they in m.uv_transform? Read docs/scene-format.md (uv_scale), the Vulkan spec's "Wrapping Operation". Wrong: the map once per object whatever uv_scale says, or shifted by the wrong amount. Checked by Lab3PlainSampler.UvScaleAndOffset, Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.AlbedoImageTimesColour.
-    // STUB: // the UVs as they are: no tiling, no shift
+    // EXERCISE texture_terms: the material with its maps, read at the material's UV: how do uv_scale (tiles) and uv_offset (shifts, in repeats) turn the mesh's uv into it, in which order, and where are they in m.uv_transform? Does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…), each read by lookup()? Read docs/lighting.md "Lab 3: textured terms", docs/scene-format.md (uv_scale, uv_offset), the Vulkan spec's "Wrapping Operation". Wrong: plain colours, the map once per object whatever uv_scale says or shifted by the wrong amount, a washed-out map, a grid that does not glow. Checked by Lab3PlainSampler.MapTermsAtTheMeshUv, Lab3PlainSampler.UvScaleAndOffset, Lab3Render.AlbedoMapMagnified, Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
+    // STUB: // the mesh's UVs as they are and no map read: every textured material shows its plain colours
     uv = uv * m.uv_transform.xy + m.uv_transform.zw;
-    // END EXERCISE
-    // EXERCISE texture_terms: the material with its maps: does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…), each read by lookup()? Read docs/lighting.md "Lab 3: textured terms". Wrong: plain colours, a washed-out map, a grid that does not glow. Checked by Lab3PlainSampler.MapTermsAtTheMeshUv, Lab3Render.AlbedoMapMagnified, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
-    // STUB: // the maps are not read: every textured material shows its plain colours
     if (ALBEDO_MAP) m.albedo.rgb *= albedo_texel(m, uv, P);
     if (SPECULAR_MAP) m.specular.rgb *= lookup(specular_map, uv).rgb;
     if (EMISSIVE_MAP) m.emissive.rgb += m.distortion[2].z * lookup(emissive_map, uv).rgb;
