@@ -658,6 +658,32 @@ TEST(Lab4Translucency, ReceiverBetweenTwoTranslucentCasters) {
     }
 }
 
+// A translucent cube's own lit faces, with no normal offset (the lookup at P itself): the face
+// P lies on is the nearest layer of P's texel, stored at the texel's centre, up to tan θ · √2/2
+// texels (θ: the face's angle to the light) nearer than P in depth. The lookup must tell that it
+// is P's own face (less than 2 texels in front, translucent_shadows.glsl), or about half the
+// face's pixels get its own 1 − α (acne in the layer). Light along (0.8, −1, −0.7): the lit
+// faces stand at 47°, 57° and 61° to it, at most 1.3 texels of that. The reference lights them
+// fully (its own face never counts).
+TEST(Lab4Translucency, TranslucentCubesLitFacesDoNotShadowThemselves) {
+    const std::vector<json> stack = {thing("cube", "ruby", {0.3, 0.9, 0.0}, {1.0, 1.0, 1.0})};
+    const std::vector<Area> areas = {
+        {"the cube's lit faces, seen first",
+         [&](const PixelLayers& p, const ref::ShadowCasters& c, const lab::LightDesc& l) {
+             return first_layer_is(p, 1) && near_value(light_at(c, l, p.layers[0]), 1.0);
+         }}};
+    const glm::dvec3 d(0.8, -1, -0.7), at(0.3, 0.9, 0.0), from = at - 3.0 * d;
+    const json no_offset = {{"normal_offset", 0}};
+    json sun = directional({d.x, d.y, d.z}), lamp = spot({from.x, from.y, from.z}, {d.x, d.y, d.z}, 40);
+    sun["shadow"] = no_offset;
+    lamp["shadow"] = no_offset;
+    for (const auto& [name, light] : std::vector<std::pair<std::string, json>>{{"own_face_directional", sun},
+                                                                               {"own_face_spot", lamp}}) {
+        SCOPED_TRACE(name);
+        expect_stack_matches(name, light, stack, areas);
+    }
+}
+
 // --- the limits of the layers and of the peel --------------------------------------------------------
 // Each limit reached on purpose, its documented behaviour (lab4_shadows/translucent_layers.h,
 // translucent_shadows.h) asserted from the reference or by hand, and the headless warning's counts.
@@ -860,7 +886,8 @@ TEST(Lab4Shadows, CasterBehindTheLightCastsNothing) {
 TEST(Lab4Shadows, ReceiverOutsideTheShadowMapsCoverageIsLit) {
     // A 60 m floor that casts nothing and one small caster: a map fitted to the casters does not
     // reach most of the floor, which must come out lit (not black), and the cube's shadow right.
-    // Bilinear, so the gathers at the map's edge read the comparison sampler's border.
+    // Bilinear, so the gathers at the map's edge read the comparison sampler's border (a band
+    // half a texel wide here: ReceiverAtTheShadowMapsEdgeIsLit is the test of that border).
     json s = base_scene();
     s["camera"] = {{"position", {0, 2.5, 9}}, {"target", {0, 0, -6}}, {"fov_y_deg", 60}, {"near", 0.05}, {"far", 200}};
     s["lights"].push_back(bilinear(directional({-0.5, -1, -0.4})));
@@ -874,6 +901,47 @@ TEST(Lab4Shadows, ReceiverOutsideTheShadowMapsCoverageIsLit) {
     EXPECT_GT(j.metric.receivers, 20000u);
     EXPECT_LE(j.metric.wrong_side_share, 0.002);
     EXPECT_LE(j.metric.mae, 2.0);
+}
+
+// Receivers just inside the map's edge: a bilinear 3×3 PCF footprint reaches 2 texels past P's
+// texel, so within 1.5 texels of the edge some of its comparisons fall outside the map and read
+// the comparison sampler's border colour (its depth: R), compared like a stored depth; the lookup
+// returns 1 only for P outside the map. Three posts far apart, a floor that casts nothing: the map
+// fitted to the posts ends on lit floor, away from their shadows; 128 texels across the ~5-unit
+// box, a texel 1–3 pixels on the floor, so that strip is pixels wide. The reference lights that
+// floor fully; deep in the light (no shadow edge of the reference within 6 px, the band: more than
+// the 2-texel blur) the picture must be the reference's. The posts' shadows must be there too.
+TEST(Lab4Shadows, ReceiverAtTheShadowMapsEdgeIsLit) {
+    json s = base_scene();
+    json light = bilinear(directional({-0.9, -1, 0.3}));
+    light["intensity"] = 0.7;  // the lit floor well under white: a darkened pixel shows
+    light["shadow"]["pcf"] = 3;
+    light["shadow"]["resolution"] = 128;
+    s["lights"].push_back(light);
+    json lit_floor = floor();
+    lit_floor["cast_shadows"] = false;
+    s["objects"].push_back(lit_floor);
+    s["objects"].push_back(thing("cube", "box", {-2.0, 0.7, -1.5}, {0.7, 1.4, 0.7}, {0, 30, 0}));
+    s["objects"].push_back(thing("cube", "stone", {2.0, 0.7, -1.0}, {0.7, 1.4, 0.7}, {0, 10, 0}));
+    s["objects"].push_back(thing("cube", "box", {0.0, 0.7, 1.4}, {0.7, 1.4, 0.7}, {0, 50, 0}));
+    const Judged j = judge("map_edge", s, 6);
+    if (!j.ok) return;
+    SCOPED_TRACE(describe(j, "map_edge"));
+    // The cubes' shadows, outside the band (wrong_side_share, below, judges them).
+    size_t shadow = 0;
+    for (size_t i = 0; i < j.metric.state.size(); ++i) shadow += j.metric.state[i] == 2 && !j.metric.band[i];
+    EXPECT_GT(shadow, 500u) << "too little of the cubes' shadows outside the band";
+    const std::vector<int>& id = j.reference.shadowed.object_id;
+    // The floor, fully lit in the reference (S = U) and its light showing (U − Z ≥ 3/255).
+    const auto fully_lit = [&](size_t i) {
+        const int x = int(i % size_t(kWidth)), y = int(i / size_t(kWidth));
+        return id[i] == 0 && channel_difference(j.unshadowed, j.shadowed, x, y) == 0;
+    };
+    const Interior in = interior(j, 6, [&](size_t i, size_t q) { return fully_lit(i) && fully_lit(q); },
+                                 [&](int x, int y) { return channel_difference(j.unshadowed, j.unlit, x, y) >= 3; });
+    EXPECT_GT(in.pixels, 20000u) << "too little lit floor in view";
+    EXPECT_LE(in.max_diff, 2) << "lit floor (" << in.pixels << " px checked) darker or lighter than the reference";
+    EXPECT_LE(j.metric.wrong_side_share, 0.002);
 }
 
 TEST(Lab4Shadows, PointLightCubeSeamsShowNoCracks) {

@@ -19,7 +19,7 @@ layout(set = 0, binding = 9) uniform sampler2DArray cube_translucency[4];  // a 
 // One layer's share: `lit`, the light that reached the layers before, and what the face this layer
 // holds does to it (exercise translucent_tap; `tolerance`, in depth, see above).
 float tap(float lit, bool translucent, vec2 transmittance, float ref, float tolerance) {
-    // EXERCISE translucent_tap: when does the light pass through the translucent casters before reaching P, and how much of it is left (what do r and g of the transmittance map hold)? Wrong: a glass object casts no shadow, or shadows itself. Checked by Lab4Shadows.TranslucentShadowFromAFarSpot, Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply.
+    // EXERCISE translucent_tap: when does the light pass through the translucent casters before reaching P, and how much of it is left (what do r and g of the transmittance map hold)? Wrong: a glass object casts no shadow, or shadows itself. Checked by Lab4Shadows.TranslucentShadowFromAFarSpot, Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply, Lab4Translucency.TranslucentCubesLitFacesDoNotShadowThemselves.
     // STUB: return lit;  // translucent casters let all the light through
     if (translucent && ref > transmittance.g + tolerance) lit *= transmittance.r;
     return lit;
