@@ -216,13 +216,33 @@ struct TexturedScene {
     Camera camera;
     int width = 0, height = 0;
     bool level0 = false;
-    std::map<std::tuple<std::string, bool, bool>, RefTexture> textures;  // [map, mipmaps, sRGB colour]
+    std::map<std::tuple<std::string, bool, bool>, std::shared_ptr<const RefTexture>> textures;  // [map, mipmaps, sRGB colour]
 
     const RefTexture* texture(const std::string& map, const lab::SamplerDesc& s, bool srgb = true) const {
         if (map.empty()) return nullptr;
-        return &textures.at({map, s.mipmaps != Mipmaps::None, srgb});
+        return textures.at({map, s.mipmaps != Mipmaps::None, srgb}).get();
     }
 };
+
+// A decoded map and its mip chain are the same for every shader made from a scene: a lab 3 test's
+// envelope makes 24 shaders and a LOD probe besides the reference's own, and decoding and
+// filtering each map 26 times was about half the test's time. One copy per process and (map,
+// mipmaps, sRGB), for a file also per its size and modification time (a test may rewrite a file).
+std::shared_ptr<const RefTexture> shared_texture(const std::string& map, bool mips, bool srgb) {
+    static std::mutex lock;
+    static std::map<std::string, std::shared_ptr<const RefTexture>> made;
+    std::string key = map + (mips ? "|mips" : "|level0") + (srgb ? "|srgb" : "|unorm");
+    std::error_code ec;
+    if (map.rfind("procedural:", 0) != 0 && std::filesystem::is_regular_file(map, ec)) {
+        const auto size = std::filesystem::file_size(map, ec);
+        const auto time = std::filesystem::last_write_time(map, ec).time_since_epoch().count();
+        key += "|" + std::to_string(size) + "|" + std::to_string(time);
+    }
+    const std::lock_guard<std::mutex> guard(lock);
+    std::shared_ptr<const RefTexture>& slot = made[key];
+    if (!slot) slot = std::make_shared<const RefTexture>(load_texture(map, mips, 16384, srgb));
+    return slot;
+}
 
 // The hit's triangle: world corners, their UVs and tangents, barycentric weights of the hit.
 struct Triangle {
@@ -298,7 +318,7 @@ std::shared_ptr<TexturedScene> textured_scene(const lab::Scene& scene, int width
             if (!map->empty()) {
                 // A specular map is data, a factor in [0, 1]: byte / 255, no sRGB decoding.
                 const bool mips = m.sampler.mipmaps != Mipmaps::None, srgb = map != &m.specular_map;
-                if (!data->textures.count({*map, mips, srgb})) data->textures[{*map, mips, srgb}] = load_texture(*map, mips, 16384, srgb);
+                if (!data->textures.count({*map, mips, srgb})) data->textures[{*map, mips, srgb}] = shared_texture(*map, mips, srgb);
             }
     return data;
 }
