@@ -91,16 +91,16 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray
     const float tolerance = s.translucent.x * inv_w;  // translucent casters, see above
     // Translucent casters: the light their layers let through to P (once, not per tap).
     const float through = translucent_light(layers, translucent_map, vec3(lookup, 0.0), ref, tolerance);
-    // PCF: N×N taps one texel apart, each lit where ref ≤ the stored depth (+ bias: the pass put it
-    // there). Nearest: each tap compares its own texel. Bilinear: each tap compares the four texels
-    // around it and weights the results like a linear filter (what a comparison sampler does with
-    // LINEAR; done by hand, as that needs a depth format the device filters: lavapipe has none).
-    // Both read the comparison sampler four texels at a time (textureGather): N taps touch N
-    // (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF costs 4 gathers, not 9 lookups
-    // (pcf_share weights each).
+    // PCF: N×N taps one texel apart, each lit where the stored depth is not nearer than ref (+
+    // bias: the pass put it there). Nearest: each tap compares its own texel. Bilinear: each tap
+    // compares the four texels around it and weights the results like a linear filter (what a
+    // comparison sampler does with LINEAR; done by hand, as that needs a depth format the device
+    // filters: lavapipe has none). Both read the comparison sampler four texels at a time
+    // (textureGather): N taps touch N (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF
+    // costs 4 gathers, not 9 lookups (pcf_share weights each).
     if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
         const float stored = texture(depth_map, lookup).r;
-        return outside ? 1.0 : (ref <= stored ? through : 0.0);
+        return outside ? 1.0 : (stored >= ref ? through : 0.0);
     }
     const vec2 size = vec2(textureSize(depth_map, 0));
     const vec2 texel = filter_mode == 1 ? lookup * size - 0.5 : lookup * size;
@@ -169,7 +169,7 @@ float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sa
     const float through = translucent_light(layers, translucent_map, face, ref, tolerance);
     if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
         const float stored = texture(depth_map, face).r;
-        return at_light ? 1.0 : (ref <= stored ? through : 0.0);
+        return at_light ? 1.0 : (stored >= ref ? through : 0.0);
     }
     // The footprint and its weights, as in shadow_2d.
     const float size = float(textureSize(depth_map, 0).x);
