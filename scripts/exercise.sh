@@ -209,10 +209,10 @@ left_out() {
     echo docs/solutions.md  # the instructors' policy: where every answer is, what to hand out when
     # lab 2's Blinn-Phong whole, a benchmark's fixture (bench/speed_goals.sh): an answer until lab 3
     if ((n <= 2)); then echo bench/fixtures/minimal_blinn_phong.frag; fi
-    # Later labs' lessons that live in shared folders: lab 2's lighting doc (lab 1 has no light),
-    # lab 4's part of the reference's interface (its rules for shadows and translucency).
+    # A later lab's lesson that lives in a shared folder: lab 2's lighting doc (lab 1 has no light).
+    # (tests/reference/cpu_shadow.h, lab 4's part of the reference's interface, stays: the copy's
+    # tools/lab_reference.cpp includes it.)
     if ((n <= 1)); then echo docs/lighting.md; fi
-    if ((n <= 3)); then echo tests/reference/cpu_shadow.h; fi
     later_test_files "$n"
     # The CPU reference's source and its own tests (hand calculations that are the labs' answers):
     # a copy gets the reference prebuilt instead (reference_libs, tests/CMakeLists.txt).
