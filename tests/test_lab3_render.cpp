@@ -55,7 +55,7 @@ const std::string kScenes = std::string(LAB_SOURCE_DIR) + "/scenes";
 const std::string kTextures = kScenes + "/textures";
 
 // A scene file in test_output/lab3: `materials` and `objects` JSON, a camera, ambient 1 and no
-// lights unless `lights` says otherwise (then colour = emissive + albedo·A exactly).
+// lights unless `lights` says otherwise (then the colour is the material's colours and maps alone).
 std::string write_scene(const std::string& name, const std::string& materials, const std::string& objects,
                         const std::string& camera = R"({"position": [0, 1.6, 1.6], "target": [0, 0, 0]})",
                         const std::string& lights = "[]", const std::string& ambient = "1.0") {
@@ -313,7 +313,7 @@ std::string data_map(const std::string& file) {
 }
 const std::string kPlainSampler = R"("sampler": {"filter": "nearest", "mipmaps": "none", "wrap": "repeat", "anisotropy": 1})";
 
-// albedo × A, specular × S, emissive + strength · E, at the mesh's own UVs (scale 1, offset 0).
+// Every map's term at the mesh's own UVs (scale 1, offset 0).
 TEST(Lab3PlainSampler, MapTermsAtTheMeshUv) {
     expect_matches(plane_scene("plain_terms", R"({"albedo": [0.9, 0.7, 0.5], "albedo_map": ")" + binary_map("plain_terms_albedo.png", 0) +
                                                   R"(", "specular": [1, 1, 1], "shininess": 8, "specular_map": ")" +
@@ -631,12 +631,12 @@ TEST(Lab3Filtering, AnisotropyLowersTheErrorAgainstTheGroundTruth) {
 // --- stress -------------------------------------------------------------------------------------
 
 TEST(Lab3Stress, HugeUvsWithRepeat) {
-    // uv' = uv + (1e6, −1e6): whole repeats are taken out of the offset (in double) before it
+    // uv_offset (1e6, −1e6): whole repeats are taken out of the offset (in double) before it
     // reaches a float, so the picture is the offset-free one (the reference works in double).
     expect_matches(plane_scene("huge_offset", R"({"albedo_map": ")" + tex("wood.png") + R"(", "uv_offset": [1e6, -1e6], )" +
                                                   kAnisoOff + "}"),
                    "huge_offset");
-    // uv' = uv · 1e6: a million repeats per unit; the LOD picks the 1×1 level, the map's average.
+    // uv_scale 1e6: a million repeats per unit; the LOD picks the 1×1 level, the map's average.
     expect_matches(plane_scene("huge_scale", R"({"albedo_map": ")" + tex("tiles.png") + R"(", "uv_scale": [1e6, -1e6], )" +
                                                  kAnisoOff + "}"),
                    "huge_scale");
