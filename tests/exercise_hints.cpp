@@ -282,15 +282,25 @@ void print_hint(const std::string& full, const std::string& pictures) {
         // ones it grades first (a mistake in an exercise it only needs fails it just the same).
         std::string names;
         for (const Marker* m : order) names += (names.empty() ? "" : ", ") + m->name;
-        std::printf("[ exercise ] every exercise this test needs is done (%s), yet it fails: one of them is wrong\n",
-                    names.c_str());
+        if (order.size() == 1)
+            std::printf("[ exercise ] the exercise this test needs is done (%s), yet the test fails\n", names.c_str());
+        else
+            std::printf("[ exercise ] every exercise this test needs is done (%s), yet it fails: one of them is wrong\n",
+                        names.c_str());
+        bool compared = false;  // the first line says "compare", the rest "and"
         for (const Marker* g : order)
-            if (is_graded(g))
-                std::printf("[ exercise ] compare your `%s` with its hint: %s:%d\n             Hint: %s\n",
-                            g->name.c_str(), g->file.c_str(), g->line, g->hint.c_str());
+            if (is_graded(g)) {
+                std::printf("[ exercise ] %s `%s` with its hint: %s:%d\n             Hint: %s\n",
+                            compared ? "and compare your" : "compare your", g->name.c_str(), g->file.c_str(), g->line,
+                            g->hint.c_str());
+                compared = true;
+            }
         for (const Marker* g : order)
-            if (!is_graded(g))
-                std::printf("[ exercise ] and your `%s`, which it needs: %s:%d\n", g->name.c_str(), g->file.c_str(), g->line);
+            if (!is_graded(g)) {
+                std::printf("[ exercise ] %s `%s`, which it needs: %s:%d\n", compared ? "and your" : "compare your",
+                            g->name.c_str(), g->file.c_str(), g->line);
+                compared = true;
+            }
     }
     // tests/reference/image_compare.h writes them left to right in this order.
     if (!pictures.empty()) std::printf("[ exercise ] pictures (expected | actual | difference): %s/\n", pictures.c_str());

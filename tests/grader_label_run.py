@@ -89,7 +89,7 @@ def to_fake(arg, build, fake):
 
 
 NEEDS = re.compile(r"^\[ exercise \] this test needs `([a-z0-9_]+)`", re.M)
-DONE = re.compile(r"^\[ exercise \] every exercise this test needs is done", re.M)
+DONE = re.compile(r"^\[ exercise \] (every exercise|the exercise) this test needs is done", re.M)
 
 
 def main(argv):

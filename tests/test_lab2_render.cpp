@@ -170,6 +170,11 @@ TEST(Lab2Term, BlinnPhongHighlights) {
     expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_highlights", false, "blinn_phong"),
                              "term_highlights");
 }
+// blinn_phong: Phong's own highlight (L's mirror image about N, against V) under the same light.
+TEST(Lab2Term, PhongHighlights) {
+    expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_phong_highlights", false, "phong"),
+                             "term_phong_highlights");
+}
 // gouraud: the same equation per vertex. The floor is stretched along its normal to (8, 16, 8),
 // which a plane (all at y = 0) does not show: its normal keeps its direction (+Y, which
 // normal_matrix's stub gives too) but, with the normal matrix scaled so its largest element is 1

@@ -155,7 +155,7 @@ vec3 microfacet_normal(vec3 N, vec3 V, vec3 L) {
 
 // A highlight: how much of a light the surface sends towards the eye, from 0 to 1, as a cosine
 // raised to the shininess n (the larger n, the smaller and sharper the highlight).
-// EXERCISE blinn_phong: phong_highlight: where does L's mirror image about N point, and how closely does V follow it? blinn_highlight: which direction lies halfway between L and V, and how closely does N follow it? Both: clamped how, narrowed by n how, and what if L + V is zero? Read docs/lighting.md "Lighting models", "Numerical safety" (why power(), not pow(); safe_normalize()). Wrong: shiny materials look matte, the highlight covers the whole lit side or sits in the wrong place, toon highlights vanish. Checked by Lab2Term.BlinnPhongHighlights, Lab2Render.DirectionalLight.
+// EXERCISE blinn_phong: phong_highlight: where does L's mirror image about N point, and how closely does V follow it? blinn_highlight: which direction lies halfway between L and V, and how closely does N follow it? Both: clamped how, narrowed by n how, and what if L + V is zero? Read docs/lighting.md "Lighting models", "Numerical safety" (why power(), not pow(); safe_normalize()). Wrong: shiny materials look matte, the highlight covers the whole lit side or sits in the wrong place, toon highlights vanish. Checked by Lab2Term.BlinnPhongHighlights, Lab2Term.PhongHighlights, Lab2Render.DirectionalLight.
 // STUB: float phong_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
 // STUB: float blinn_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
 float phong_highlight(vec3 N, vec3 V, vec3 L, float n) {
