@@ -144,26 +144,26 @@ float smith_g1(float x, float alpha) {
     return c < 1.6 ? (3.535 * c + 2.181 * c * c) / (1.0 + 2.276 * c + 2.577 * c * c) : 1.0;
 }
 
-// The microfacet models' H: the normal a mirror-like facet needs to reflect L into V.
-vec3 microfacet_normal(vec3 N, vec3 V, vec3 L) {
-    const vec3 H = safe_normalize(L + V, N);
+// The half vector H: the normal a mirror-like facet needs to reflect L into V (Blinn's highlight
+// and the microfacet models use it). A highlight: how much of a light the surface sends towards
+// the eye, from 0 to 1, as a cosine raised to the shininess n (the larger n, the sharper it is).
+// EXERCISE blinn_phong: half_vector: which unit direction lies halfway between L and V, and what if L + V is zero? phong_highlight: where does L's mirror image about N point, and how closely does V follow it? blinn_highlight: how closely does N follow the half vector? Both highlights: clamped how, narrowed by n how? Read docs/lighting.md "Lighting models", "Numerical safety" (why power(), not pow(); safe_normalize()). Wrong: shiny materials look matte, the highlight covers the whole lit side or sits in the wrong place, toon highlights vanish. Checked by Lab2Term.BlinnPhongHighlights, Lab2Term.PhongHighlights, Lab2Render.DirectionalLight.
+// STUB: vec3 half_vector(vec3 N, vec3 V, vec3 L) { return N; }  // every facet lined up with N
+// STUB: float phong_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
+// STUB: float blinn_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
+vec3 half_vector(vec3 N, vec3 V, vec3 L) {
+    const vec3 H = safe_normalize(L + V, N);  // N where L and V cancel
     check(H);
     return H;
 }
 
-// A highlight: how much of a light the surface sends towards the eye, from 0 to 1, as a cosine
-// raised to the shininess n (the larger n, the smaller and sharper the highlight).
-// EXERCISE blinn_phong: phong_highlight: where does L's mirror image about N point, and how closely does V follow it? blinn_highlight: which direction lies halfway between L and V, and how closely does N follow it? Both: clamped how, narrowed by n how, and what if L + V is zero? Read docs/lighting.md "Lighting models", "Numerical safety" (why power(), not pow(); safe_normalize()). Wrong: shiny materials look matte, the highlight covers the whole lit side or sits in the wrong place, toon highlights vanish. Checked by Lab2Term.BlinnPhongHighlights, Lab2Term.PhongHighlights, Lab2Render.DirectionalLight.
-// STUB: float phong_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
-// STUB: float blinn_highlight(vec3 N, vec3 V, vec3 L, float n) { return 0.0; }  // matte: no highlights
 float phong_highlight(vec3 N, vec3 V, vec3 L, float n) {
     const vec3 R = 2.0 * dot(N, L) * N - L;  // reflect(−L, N): L's mirror image about N
     return power(max(dot(R, V), 0.0), n);
 }
 
 float blinn_highlight(vec3 N, vec3 V, vec3 L, float n) {
-    const vec3 H = safe_normalize(L + V, N);  // halfway between L and V (N if they cancel)
-    return power(max(dot(N, H), 0.0), n);
+    return power(max(dot(N, half_vector(N, V, L)), 0.0), n);
 }
 // END EXERCISE
 
@@ -202,7 +202,7 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
         diffuse = a * power(nl, k) * pow(max(nv, MIN_COS_VIEW), k - 1.0);
     }
     if (LIGHTING_MODEL == MODEL_COOK_TORRANCE) {
-        const vec3 H = microfacet_normal(N, V, L);
+        const vec3 H = half_vector(N, V, L);
         const float nh = max(dot(N, H), 0.0);
         const float alpha = max(m.f0.a * m.f0.a, MIN_ALPHA);
         const float nvc = max(nv, MIN_COS_VIEW);
@@ -214,7 +214,7 @@ vec3 reflectance(Material m, vec3 N, vec3 V, vec3 L, vec3 T) {
         return diffuse + spec;
     }
     if (LIGHTING_MODEL == MODEL_WARD) {
-        const vec3 H = microfacet_normal(N, V, L);
+        const vec3 H = half_vector(N, V, L);
         const float nh = max(dot(N, H), 0.0);
         const vec3 B = cross(N, T);
         const float ax = m.params.x, ay = m.params.y;
