@@ -50,12 +50,15 @@ inline std::string test_output_dir(const std::string& sub) {
 // The command that runs `exe`: with $LAB_EXE_DIR set the lab binary of the same name in that folder
 // runs instead (the grader's build of a stubbed lab), and with $LAB_SHADER_DIR set too, it loads its
 // shaders from there (--dev-shader-dir): the grader runs these tests and cannot put a flag on the
-// lab's command line itself.
+// lab's command line itself. Another lab's binary, which the grader did not build (lab 3's test of
+// lab 2's scene runs lab 2 too), runs as built, with its own shaders.
 inline std::string lab_command(const std::string& exe) {
     const char* exe_dir = std::getenv("LAB_EXE_DIR");
     const char* shader_dir = std::getenv("LAB_SHADER_DIR");
-    const bool graded = exe_dir && *exe_dir;
-    const std::string program = graded ? std::string(exe_dir) + "/" + std::filesystem::path(exe).filename().string() : exe;
+    const std::string stubbed =
+        exe_dir && *exe_dir ? std::string(exe_dir) + "/" + std::filesystem::path(exe).filename().string() : "";
+    const bool graded = !stubbed.empty() && std::filesystem::exists(stubbed);
+    const std::string program = graded ? stubbed : exe;
     return quoted(program) + (graded && shader_dir && *shader_dir ? " --dev-shader-dir " + quoted(shader_dir) : "");
 }
 
