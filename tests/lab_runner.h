@@ -55,9 +55,13 @@ inline std::string test_output_dir(const std::string& sub) {
 inline std::string lab_command(const std::string& exe) {
     const char* exe_dir = std::getenv("LAB_EXE_DIR");
     const char* shader_dir = std::getenv("LAB_SHADER_DIR");
-    const std::string stubbed =
-        exe_dir && *exe_dir ? std::string(exe_dir) + "/" + std::filesystem::path(exe).filename().string() : "";
-    const bool graded = !stubbed.empty() && std::filesystem::exists(stubbed);
+    const std::string name = std::filesystem::path(exe).filename().string();
+    const std::string stubbed = exe_dir && *exe_dir ? std::string(exe_dir) + "/" + name : "";
+    // The graded lab is the one whose shaders the grader compiled (LAB_SHADER_DIR = …/shaders/<lab>).
+    std::filesystem::path shaders = shader_dir && *shader_dir ? std::filesystem::path(shader_dir) : std::filesystem::path();
+    if (!shaders.empty() && !shaders.has_filename()) shaders = shaders.parent_path();  // a trailing '/'
+    const std::string graded_lab = shaders.filename().string();
+    const bool graded = !stubbed.empty() && (graded_lab.empty() ? std::filesystem::exists(stubbed) : graded_lab == name);
     const std::string program = graded ? stubbed : exe;
     return quoted(program) + (graded && shader_dir && *shader_dir ? " --dev-shader-dir " + quoted(shader_dir) : "");
 }
