@@ -788,12 +788,19 @@ declare -A done_files=()
 for entry in "${all[@]}"; do
   IFS=$'\037' read -r name file line hint tests <<<"$entry"
   [[ " ${names[*]} " == *" $name "* ]] || continue
-  printf '  %-14s %s:%s\n' "$name" "$file" "$line"
   done_files[$file]+=" $name"
 done
 for file in "${!done_files[@]}"; do
   # shellcheck disable=SC2086
   stub_file "$file" ${done_files[$file]} >"$out/$file"
+done
+# Each exercise where the copy has it (a stub is shorter than the code it replaces: the lines of
+# the instructors' files would point below the TODO of a later exercise in the same file).
+for entry in "${all[@]}"; do
+  IFS=$'\037' read -r name file line hint tests <<<"$entry"
+  [[ " ${names[*]} " == *" $name "* ]] || continue
+  line=$(grep -n -m1 -F "// TODO EXERCISE $name: " "$out/$file" | cut -d: -f1)
+  printf '  %-14s %s:%s\n' "$name" "$file" "$line"
 done
 # .exercise-stubs: each cut-out exercise's stub, "file name stub-line", so that the grader
 # (tests/exercise_hints.cpp) sees an exercise as done once its code differs from the stub, whether
