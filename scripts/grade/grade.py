@@ -735,6 +735,7 @@ class Submission:
         self.fatal = None
         self.kept = {}       # (exercise, test) → pictures next to the report
         self.code = {}       # exercise → the student's region, as handed in
+        self.line = {}       # exercise → the line of its marker in the student's own file
 
 
 def grade_submission(g, entry, name, outdir, progress):
@@ -767,6 +768,7 @@ def grade_submission(g, entry, name, outdir, progress):
             if body and not body[-1].endswith("\n"):
                 body[-1] += "\n"
             bodies[e["name"]] = body
+            s.line[e["name"]] = reg[0] + 1
             s.code[e["name"]] = "".join(body)
             strip = lambda ls: [l.rstrip() for l in ls if l.strip()]
             s.region[e["name"]] = ("solution" if strip(body) == strip(e["solution"]) else
@@ -949,7 +951,7 @@ def report_html(g, s):
         n = e["name"]
         ok = s.grades.get(n, 0)
         b.append(f"<div class=\"ex\"><h2><span class=\"badge {'p' if ok else 'f'}\">{ok}</span> {e_(n)} "
-                 f"<span class=\"m\">{e_(e['file'])}:{e['line']}</span></h2>")
+                 f"<span class=\"m\">{e_(e['file'])}{':' + str(s.line[n]) if n in s.line else ''}</span></h2>")
         b.append(f"<pre>{e_(s.messages.get(n, ''))}</pre>")
         if n in s.code:
             b.append(f"<details><summary>the student's code for {e_(n)}</summary><pre>{e_(s.code[n])}</pre></details>")

@@ -263,6 +263,12 @@ def run(tmp):
     pics = re.findall(r'<img src="([^"]+)"', report)
     if not pics or not all(os.path.isfile(os.path.join(out, "partial", p)) for p in pics):
         problems.append(f"partial/report.html: no expected|actual|difference picture ({pics})")
+    # each exercise at its marker's line in the student's own file (a stub is shorter than the
+    # solution: the instructors' line of a later exercise in the same file would point elsewhere)
+    for n in EXERCISES:
+        at = f"{FILE_OF[n]}:{region(open(os.path.join(subs, 'partial', FILE_OF[n])).read().splitlines(), n)[0] + 1}<"
+        if at not in report:
+            problems.append(f"partial/report.html does not place {n} at {at[:-1]}")
     if "http://" in index or "https://" in index or "http" in report.replace("https://", "").split("<body>")[0]:
         problems.append("the pages make external requests")
 
