@@ -47,23 +47,20 @@ inline std::string test_output_dir(const std::string& sub) {
     return (dir && *dir ? std::string(dir) : std::string(LAB_BINARY_DIR) + "/test_output") + "/" + sub;
 }
 
-// The command that runs `exe`: with $LAB_EXE_DIR set the lab binary of the same name in that folder
-// runs instead (the grader's build of a stubbed lab), and with $LAB_SHADER_DIR set too, it loads its
-// shaders from there (--dev-shader-dir): the grader runs these tests and cannot put a flag on the
-// lab's command line itself. Another lab's binary, which the grader did not build (lab 3's test of
-// lab 2's scene runs lab 2 too), runs as built, with its own shaders.
+// The command that runs `exe`. The grader (scripts/exercise.sh --prove) cannot put a flag on the
+// lab's command line, so it names the lab it graded by two variables: $LAB_SHADER_DIR, the stubbed
+// shaders it compiled (…/shaders/<lab>), and $LAB_EXE_DIR, the folder of its build of that lab. That
+// lab's binary then runs from there, loading those shaders (--dev-shader-dir); another lab's binary
+// (lab 3's test of lab 2's scene runs lab 2 too) runs as built, with its own shaders.
 inline std::string lab_command(const std::string& exe) {
     const char* exe_dir = std::getenv("LAB_EXE_DIR");
     const char* shader_dir = std::getenv("LAB_SHADER_DIR");
+    if (!exe_dir || !*exe_dir || !shader_dir || !*shader_dir) return quoted(exe);
     const std::string name = std::filesystem::path(exe).filename().string();
-    const std::string stubbed = exe_dir && *exe_dir ? std::string(exe_dir) + "/" + name : "";
-    // The graded lab is the one whose shaders the grader compiled (LAB_SHADER_DIR = …/shaders/<lab>).
-    std::filesystem::path shaders = shader_dir && *shader_dir ? std::filesystem::path(shader_dir) : std::filesystem::path();
-    if (!shaders.empty() && !shaders.has_filename()) shaders = shaders.parent_path();  // a trailing '/'
-    const std::string graded_lab = shaders.filename().string();
-    const bool graded = !stubbed.empty() && (graded_lab.empty() ? std::filesystem::exists(stubbed) : graded_lab == name);
-    const std::string program = graded ? stubbed : exe;
-    return quoted(program) + (graded && shader_dir && *shader_dir ? " --dev-shader-dir " + quoted(shader_dir) : "");
+    std::filesystem::path shaders(shader_dir);
+    if (!shaders.has_filename()) shaders = shaders.parent_path();  // a trailing '/'
+    if (shaders.filename().string() != name) return quoted(exe);
+    return quoted(std::string(exe_dir) + "/" + name) + " --dev-shader-dir " + quoted(shader_dir);
 }
 
 // Runs `exe` (lab_command) with `args` (already quoted), stdout + stderr into `log_path`.
