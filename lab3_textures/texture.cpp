@@ -147,9 +147,7 @@ Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, 
             return;
         }
         // Each level is a linear-filtered blit of the one above at half the size: for even sizes
-        // exactly the 2×2 box (an sRGB blit decodes, filters in linear colour, encodes). A level
-        // is read by one blit and written by the next, so it changes layout in between
-        // (TRANSFER_DST → TRANSFER_SRC), and the barrier makes the write visible to the read.
+        // exactly the 2×2 box (an sRGB blit decodes, filters in linear colour, encodes).
         // EXERCISE mip_chain: record the chain: for each level from 1 up, what must happen to the level above before a blit may read it, which rectangle goes to which, and when is a level done (ready for the fragment shader)? Read vkCmdBlitImage and VkImageBlit in the spec ("Copying Data Between Images"), and what to_shader() above does. Wrong: the far floor turns black or noisy (levels 1+ never written), or the validation layer reports a layout mismatch. Checked by MipChain.DataMapLevelsAreBoxesOfTheLevelAbove, MipChain.EveryLevelIsTheBoxOfTheLevelAboveOnBothPaths, Lab3Render.MinifiedFloorTrilinear.
         // STUB: for (uint32_t level = 0; level < t.levels; ++level)  // only level 0 holds pixels
         // STUB:     to_shader(level, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT);

@@ -9,12 +9,17 @@
 // tests/graded_exercises.txt. A failing test prints, for example:
 //     [ exercise ] this test needs `texel_format`, still the stub: lab3_textures/texture.cpp:28
 //                  Hint: which VkFormat does a colour map ...
-//     [ exercise ] it also grades `mip_chain` (lab3_textures/texture.cpp:154): finish `texel_format` first
+//     [ exercise ] it also grades `mip_chain` (lab3_textures/texture.cpp:152): finish `texel_format` first
 // or, when every exercise it needs is done:
 //     [ exercise ] every exercise this test needs is done (texel_format, mip_chain), yet it fails: one
 //                  of them is wrong
-//     [ exercise ] compare your `mip_chain` with its hint: lab3_textures/texture.cpp:154 ...
+//     [ exercise ] compare your `mip_chain` with its hint: lab3_textures/texture.cpp:152 ...
 //     [ exercise ] and your `texel_format`, which it needs: lab3_textures/texture.cpp:28
+//     [ exercise ] or another exercise of the lab is wrong in a way its stub does not show; the
+//                  exercises' own tests name the one that is wrong: ctest --test-dir build -R '^(…)$'
+// (the rows list what each exercise's stub fails: a wrong answer, such as a swapped format or a
+// missing barrier, can fail tests its stub does not). A failing test of no exercise, in a student
+// copy, prints that last line alone.
 //
 // "Done" does not depend on the marker line: an exercise is unfinished while its code (between
 // the marker and END EXERCISE, without whitespace and // comments) is still the stub. The stub's
@@ -239,6 +244,28 @@ bool matches(const std::string& pattern, const std::string& test) {
     return fnmatch(pattern.c_str(), test.c_str(), 0) == 0;
 }
 
+// The CTest command that runs the own tests ("Checked by") of every exercise first taught in `labs`:
+// a mistake the stubs do not show (a test's rows list what each exercise's stub fails) can fail a
+// test that does not list its exercise, and that exercise's own tests name it.
+std::string own_tests_command(const std::vector<Marker>& markers, const std::vector<int>& labs) {
+    std::vector<std::string> patterns;
+    for (const Marker& m : markers) {
+        // An exercise belongs to the first lab it appears in (later labs carry its file).
+        int first = m.lab;
+        for (const Marker& o : markers)
+            if (o.name == m.name) first = std::min(first, o.lab);
+        if (std::find(labs.begin(), labs.end(), first) == labs.end()) continue;
+        for (const std::string& t : m.tests) {
+            std::string rx;  // a gtest pattern as a CTest regular expression
+            for (const char c : t) rx += c == '*' ? std::string(".*") : c == '.' ? std::string("\\.") : std::string(1, c);
+            if (std::find(patterns.begin(), patterns.end(), rx) == patterns.end()) patterns.push_back(rx);
+        }
+    }
+    std::string joined;
+    for (const std::string& rx : patterns) joined += (joined.empty() ? "" : "|") + rx;
+    return patterns.empty() ? "" : "ctest --test-dir build -R '^(" + joined + ")$'";
+}
+
 // What test `full` (Suite.Test, or a CTest name such as lab4_smoke_stress) needs, printed as the
 // grader's hint: the first unfinished exercise it needs, or that every one is done. `pictures`:
 // the folder the failing test wrote its pictures to (empty: it wrote none), said on the last line.
@@ -253,7 +280,18 @@ void print_hint(const std::string& full, const std::string& pictures) {
     needed = graded;
     for (const auto& [pattern, names] : table)
         if (matches(pattern, full)) needed.insert(needed.end(), names.begin(), names.end());
-    if (needed.empty()) return;  // a test of no exercise: nothing to say about them
+    if (needed.empty()) {
+        // A test of no exercise. In a student copy, a mistake in one (an invalid sampler, a missing
+        // barrier: the validation layer) can still fail it: say how to find which.
+        std::vector<int> todo_labs;
+        for (const Marker& m : markers)
+            if (m.todo && std::find(todo_labs.begin(), todo_labs.end(), m.lab) == todo_labs.end()) todo_labs.push_back(m.lab);
+        const std::string command = own_tests_command(markers, todo_labs);
+        if (!command.empty())
+            std::printf("[ exercise ] this test grades no exercise; if it fails after you changed one, the exercises'\n"
+                        "             own tests name the one that is wrong: %s\n", command.c_str());
+        return;
+    }
 
     // The exercises it needs in the labs' order, each once: an unfinished copy of an exercise
     // (a lab carries an earlier lab's files) stands for it, else its first lab's; the order is
@@ -301,6 +339,14 @@ void print_hint(const std::string& full, const std::string& pictures) {
                             g->name.c_str(), g->file.c_str(), g->line);
                 compared = true;
             }
+        // The rows list what each exercise's stub fails; a wrong answer can fail more than its stub.
+        std::vector<int> labs;
+        for (const Marker* m : order)
+            if (std::find(labs.begin(), labs.end(), m->lab) == labs.end()) labs.push_back(m->lab);
+        const std::string command = own_tests_command(markers, labs);
+        if (!command.empty())
+            std::printf("[ exercise ] or another exercise of the lab is wrong in a way its stub does not show; the\n"
+                        "             exercises' own tests name the one that is wrong: %s\n", command.c_str());
     }
     // tests/reference/image_compare.h writes them left to right in this order.
     if (!pictures.empty()) std::printf("[ exercise ] pictures (expected | actual | difference): %s/\n", pictures.c_str());
