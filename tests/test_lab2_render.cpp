@@ -159,12 +159,26 @@ TEST(Lab2Term, TurnedAndSquashedObjects) {
     expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_normals", true), "term_normals");
 }
 // attenuation: two point lights with their falloff.
+// The second picture gives one light k = (0, 0, 0) (docs/scene-format.md: no falloff at all).
 TEST(Lab2Term, PointLightFalloff) {
-    expect_matches_reference(one_term(kTestScenes + "/lab2_point.json", "term_falloff", false, "lambert", "phong", true),
-                             "term_falloff");
+    const std::string file = one_term(kTestScenes + "/lab2_point.json", "term_falloff", false, "lambert", "phong", true);
+    expect_matches_reference(file, "term_falloff");
+    expect_matches_reference(scene_variant(kLab, file, "term_no_falloff",
+                                           [](json& scene) { scene["lights"][1]["attenuation"] = {0, 0, 0}; }),
+                             "term_no_falloff");
 }
-// spot_cone: two spot lights, no falloff with distance.
-TEST(Lab2Term, SpotCones) { expect_matches_reference(one_term(kTestScenes + "/lab2_spot.json", "term_spots", false), "term_spots"); }
+// spot_cone: two spot lights, no falloff with distance; the second picture gives one of them
+// inner_deg = outer_deg (docs/scene-format.md: a hard edge).
+TEST(Lab2Term, SpotCones) {
+    const std::string file = one_term(kTestScenes + "/lab2_spot.json", "term_spots", false);
+    expect_matches_reference(file, "term_spots");
+    expect_matches_reference(scene_variant(kLab, file, "term_spot_hard_edge",
+                                           [](json& scene) {
+                                               scene["lights"][1]["inner_deg"] = 20;
+                                               scene["lights"][1]["outer_deg"] = 20;
+                                           }),
+                             "term_spot_hard_edge");
+}
 // blinn_phong: the highlights of the default model under a directional light.
 TEST(Lab2Term, BlinnPhongHighlights) {
     expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_highlights", false, "blinn_phong"),

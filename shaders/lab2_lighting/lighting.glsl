@@ -62,7 +62,7 @@ layout(std140, set = 0, binding = 2) uniform Materials { Material materials[MAX_
 
 layout(push_constant) uniform ObjectConstants {
     mat4 model;              // model → world
-    vec4 normal_matrix[3];   // columns of (M₃⁻¹)ᵀ, scaled to max |element| = 1
+    vec4 normal_matrix[3];   // the normal matrix's columns (renderer.cpp), scaled to max |element| = 1
     uint material;           // index into materials[]
 } object;
 
