@@ -87,7 +87,7 @@ private:
     // Lab 3: textures. Each map image loaded and uploaded once; per material with maps one
     // descriptor set (set 1), written once; materials without maps bind nothing.
     SamplerCache samplers_;
-    using TextureKey = std::pair<std::string, TexelEncoding>;  // a map, as colour or as data
+    using TextureKey = std::pair<std::string, VkFormat>;  // a map, in the format its kind reads it
     std::map<TextureKey, Texture> textures_;
     Texture white_;  // stands in for a map a textured material lacks
     lab::Handle<VkDescriptorSetLayout> texture_layout_;

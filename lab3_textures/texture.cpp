@@ -21,15 +21,6 @@ uint8_t linear_to_srgb(double c) {
     return uint8_t(std::lround(e * 255.0));
 }
 
-// The image's format says how the sampler turns a texel's bytes into the numbers a shader
-// reads. The bytes are the same whatever the format; only their meaning differs.
-VkFormat format_of(TexelEncoding encoding) {
-    // EXERCISE texel_format: which VkFormat does a colour map (its bytes sRGB-encoded, as image files store them) get, and which a data map such as specular (its bytes are plain numbers)? Read texture.h's header comment, docs/lighting.md on colour spaces, the Vulkan spec's "Conversion to RGBA" (sRGB). Wrong: textured surfaces look washed out and too bright, their mip levels too light. Checked by TexelFormat.*, Lab3Render.AlbedoImageTimesColour, Lab3Render.AlbedoMapMagnified.
-    // STUB: return VK_FORMAT_R8G8B8A8_UNORM;  // every map read as plain numbers
-    return encoding == TexelEncoding::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-    // END EXERCISE
-}
-
 bool can_blit_linear(const lab::VulkanContext& vk, VkFormat format) {
     const VkFormatProperties fp = vk.format_properties(format);
     const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
@@ -50,6 +41,15 @@ std::vector<std::pair<int, double>> footprint(int i, int in, int out) {
 }
 
 }  // namespace
+
+// The image's format says how the sampler turns a texel's bytes into the numbers a shader
+// reads. The bytes are the same whatever the format; only their meaning differs.
+VkFormat format_of(MapKind kind) {
+    // EXERCISE texel_format: which VkFormat does each of a material's three maps get? For each map, decide what its bytes are (a colour, sRGB-encoded as image files store colours, or plain numbers) from what it does in the lighting equation, then which format makes the sampler hand the shader linear values. Read texture.h's header comment, docs/lighting.md's equation, the Vulkan spec's "Conversion to RGBA" (sRGB). Wrong: textured surfaces look washed out and too bright, their mip levels too light. Checked by TexelFormat.*, Lab3Render.AlbedoImageTimesColour, Lab3Render.AlbedoMapMagnified.
+    // STUB: return VK_FORMAT_R8G8B8A8_UNORM;  // every map read as plain numbers
+    return kind == MapKind::Specular ? VK_FORMAT_R8G8B8A8_UNORM : VK_FORMAT_R8G8B8A8_SRGB;
+    // END EXERCISE
+}
 
 uint32_t mip_level_count(uint32_t width, uint32_t height) {
     uint32_t levels = 1;
@@ -87,12 +87,13 @@ lab::Image8 downsample(const lab::Image8& image, TexelEncoding encoding) {
     return out;
 }
 
-Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, bool mipmaps, MipSource source, TexelEncoding encoding) {
+Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, bool mipmaps, MipSource source, VkFormat format) {
     Texture t;
     t.width = uint32_t(pixels.width);
     t.height = uint32_t(pixels.height);
     t.levels = mipmaps ? mip_level_count(t.width, t.height) : 1;
-    const VkFormat format = format_of(encoding);
+    // The CPU's box filter averages what the sampler will read: an _SRGB image's texels decoded.
+    const TexelEncoding encoding = format == VK_FORMAT_R8G8B8A8_SRGB ? TexelEncoding::Srgb : TexelEncoding::Linear;
     // Blits only when each level is exactly the 2×2 box of the one above: both sides even (or 1)
     // at every step. Otherwise (wood.png, 100×60: 25×15 → 12×7 is a 2.08-texel box) the CPU box.
     bool exact = true;

@@ -5,10 +5,10 @@
 // GPU (or box-filtered on the CPU where the device can't), and the final layout the fragment
 // shader samples in. The sampler that reads it is sampler_cache.h.
 //
-// A map is 8-bit RGBA. A colour map (albedo, emissive) holds sRGB-encoded bytes, as image files
-// do, while filtering and lighting must happen in linear colour; a data map (specular: a factor in
-// [0, 1], not a colour) holds plain numbers. The image's format tells the sampler which its bytes
-// are: which format for which map is exercise texel_format (texture.cpp; docs/lighting.md).
+// A map is 8-bit RGBA. Image files store colours sRGB-encoded, while filtering and lighting must
+// happen in linear colour; a map that holds numbers rather than colours holds them as they are.
+// The image's format tells the sampler which its bytes are: which format each of a material's
+// maps gets is exercise texel_format (texture.cpp; docs/lighting.md).
 #pragma once
 
 #include "image.h"
@@ -22,11 +22,18 @@
 // the CPU. (A linear blit from an odd size samples two texels where the box needs three.)
 enum class MipSource { Auto, Cpu };
 
-// What a map's texels are: a colour (sRGB-encoded) or data (linear numbers).
+// What a map's texels are, as the CPU's box filter averages them: sRGB-encoded colours (decoded
+// to linear first) or plain numbers.
 enum class TexelEncoding { Srgb, Linear };
 
+// A material's three maps, in the order of their bindings (lit.frag, set 1: 0, 1, 2).
+enum class MapKind { Albedo, Specular, Emissive };
+
+// The format a map of `kind` is stored in: how the sampler reads its bytes (exercise texel_format).
+VkFormat format_of(MapKind kind);
+
 struct Texture {
-    lab::Image image;  // 8-bit RGBA (format_of), SHADER_READ_ONLY_OPTIMAL, the view covers every level
+    lab::Image image;  // 8-bit RGBA (upload_texture's format), SHADER_READ_ONLY_OPTIMAL, the view covers every level
     uint32_t width = 0;
     uint32_t height = 0;
     uint32_t levels = 1;
@@ -43,8 +50,9 @@ lab::Image8 downsample(const lab::Image8& image, TexelEncoding encoding);
 // True when a linear blit makes exactly that level from `width` × `height`: each side even, or 1.
 bool blit_halves_exactly(uint32_t width, uint32_t height);
 
-// Uploads `pixels` (a staging buffer and one submit); with `mipmaps` the whole chain: blits where
-// the device has linear blits for the format, else the CPU fallback (`--dev-no-blit` makes a
-// device without them, so tests run that path on any device).
+// Uploads `pixels` as an image of `format` (VK_FORMAT_R8G8B8A8_SRGB or _UNORM; a staging buffer and
+// one submit); with `mipmaps` the whole chain: blits where the device has linear blits for the
+// format, else the CPU fallback, which averages in the space the format reads (`--dev-no-blit`
+// makes a device without blits, so tests run that path on any device).
 Texture upload_texture(const lab::VulkanContext& vk, const lab::Image8& pixels, bool mipmaps, MipSource source = MipSource::Auto,
-                       TexelEncoding encoding = TexelEncoding::Srgb);
+                       VkFormat format = VK_FORMAT_R8G8B8A8_UNORM);

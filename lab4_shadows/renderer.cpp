@@ -129,20 +129,18 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lit_pipeline(variant_of(lighting));  // the scene's own variant, built up front
 }
 
-// Each map image is loaded and uploaded once per encoding, however many materials use it, with a
-// mip chain if any of them samples mipmaps. Albedo and emissive maps are colours (sRGB); a
-// specular map is data, a factor in [0, 1] (see docs/lighting.md). A bad file
+// Each map image is loaded and uploaded once per format (format_of: what the map's bytes are),
+// however many materials use it, with a mip chain if any of them samples mipmaps. A bad file
 // becomes the checkerboard and one warning line.
 void Renderer::load_textures(const Lighting& lighting) {
-    using Encoding = TexelEncoding;
-    const Encoding encodings[3] = {Encoding::Srgb, Encoding::Linear, Encoding::Srgb};  // albedo, specular, emissive
-    std::map<TextureKey, bool> mipmaps;  // [map, encoding]: does any material want its mip chain?
+    const VkFormat formats[3] = {format_of(MapKind::Albedo), format_of(MapKind::Specular), format_of(MapKind::Emissive)};
+    std::map<TextureKey, bool> mipmaps;  // [map, format]: does any material want its mip chain?
     uint32_t textured = 0;
     for (const lab::MaterialDesc& m : lighting.materials) {
         textured += m.has_maps();
         const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
         for (int i = 0; i < 3; ++i)
-            if (!maps[i]->empty()) mipmaps[{*maps[i], encodings[i]}] |= m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::None;
+            if (!maps[i]->empty()) mipmaps[{*maps[i], formats[i]}] |= m.sampler.mipmaps != lab::SamplerDesc::Mipmaps::None;
     }
     for (const auto& [key, mips] : mipmaps) {
         const lab::TextureLoad load = lab::load_texture_image(key.first, int(vk_.properties().limits.maxImageDimension2D));
@@ -175,7 +173,7 @@ void Renderer::load_textures(const Lighting& lighting) {
         VkDescriptorImageInfo images[3];
         VkWriteDescriptorSet writes[3];
         for (uint32_t binding = 0; binding < 3; ++binding) {
-            const Texture& t = maps[binding]->empty() ? white_ : textures_.at({*maps[binding], encodings[binding]});
+            const Texture& t = maps[binding]->empty() ? white_ : textures_.at({*maps[binding], formats[binding]});
             images[binding] = {samplers_.get(sampler), t.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             writes[binding] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             writes[binding].dstSet = material_sets_.back();

@@ -383,9 +383,9 @@ void expect_levels_are_boxes(const std::vector<TexelEncoding>& encodings) {
                     image.width = size[0];
                     image.height = size[1];
                     for (int i = 0; i < size[0] * size[1] * 4; ++i) image.rgba.push_back(next());
-                    const Texture t = upload_texture(vk, image, true, source, encoding);
-                    const std::vector<lab::Image8> levels = read_levels(vk, t);
                     const bool srgb = encoding == TexelEncoding::Srgb;
+                    const Texture t = upload_texture(vk, image, true, source, ref::map_format(srgb));
+                    const std::vector<lab::Image8> levels = read_levels(vk, t);
                     // The lab blits when asked to (Auto), when the device can blit the map's format
                     // (the reference's), and when every step halves both sides exactly (each even,
                     // or 1); otherwise it makes the CPU box.
@@ -447,9 +447,11 @@ std::vector<float> texels_as_numbers(const lab::VulkanContext& vk, const Texture
 }
 }  // namespace
 
-// A colour map's bytes are sRGB-encoded (as image files store them): the device must decode them
-// through the sRGB curve (the spec's "sRGB EOTF"), alpha excepted; a data map's bytes are plain
-// numbers, byte/255. The expected values are the curve's, computed here from its definition.
+// Each of a material's maps, uploaded in the format format_of gives its kind, read back as the
+// device converts its bytes. A map whose bytes are sRGB-encoded colours (which ones: the prebuilt
+// reference, ref::map_holds_colour) must decode through the sRGB curve (the spec's "sRGB EOTF"),
+// alpha excepted; any other map's bytes are plain numbers, byte/255. The expected values are the
+// curve's, computed here from its definition.
 // A colour texel is judged where it was stored, in the encoded domain: its decoded value, encoded
 // again, must be within half a level of its byte (it names that byte and no other). Devices decode
 // with different precision: lavapipe to within 1e-3 in linear, an NVIDIA H200 byte 250 as 0.953125
@@ -464,13 +466,14 @@ TEST(TexelFormat, ColourMapsDecodeThroughTheSrgbCurveDataMapsDoNot) {
         options.message_count = &messages;
         lab::VulkanContext vk(options);
         const lab::Image8 bytes{4, 1, {0, 10, 64, 128, 128, 192, 255, 64, 255, 0, 32, 200, 7, 250, 100, 0}};
-        for (const TexelEncoding encoding : {TexelEncoding::Srgb, TexelEncoding::Linear}) {
-            const bool colour = encoding == TexelEncoding::Srgb;
-            const std::vector<float> got = texels_as_numbers(vk, upload_texture(vk, bytes, false, MipSource::Auto, encoding));
+        const char* const names[] = {"albedo", "specular", "emissive"};
+        for (const MapKind kind : {MapKind::Albedo, MapKind::Specular, MapKind::Emissive}) {
+            const bool colour = ref::map_holds_colour(int(kind));
+            const std::vector<float> got = texels_as_numbers(vk, upload_texture(vk, bytes, false, MipSource::Auto, format_of(kind)));
             ASSERT_EQ(got.size(), bytes.rgba.size());
             for (size_t i = 0; i < got.size(); ++i) {
                 const double byte = bytes.rgba[i] / 255.0;
-                const std::string where = std::string(colour ? "colour" : "data") + " map, texel " + std::to_string(i / 4) +
+                const std::string where = std::string(names[int(kind)]) + " map, texel " + std::to_string(i / 4) +
                                           " channel " + std::to_string(i % 4) + ": byte " + std::to_string(int(bytes.rgba[i]));
                 if (colour && i % 4 != 3)
                     EXPECT_NEAR(255.0 * ref::srgb_encode(std::clamp(double(got[i]), 0.0, 1.0)), double(bytes.rgba[i]), 0.5)

@@ -97,6 +97,10 @@ double fract(double x) { return x - std::floor(x); }
 
 }  // namespace
 
+// Albedo and emissive maps are colours, sRGB-encoded as image files store them; the specular map is
+// data, a factor in [0, 1]: byte / 255, no sRGB decoding.
+bool map_holds_colour(int binding) { return binding != 1; }
+
 RefTexture make_texture(int width, int height, const std::vector<unsigned char>& srgb_rgba, bool mipmaps, bool srgb) {
     RefTexture t;
     TextureLevel level;
@@ -313,13 +317,14 @@ std::shared_ptr<TexturedScene> textured_scene(const lab::Scene& scene, int width
     data->width = width;
     data->height = height;
     data->level0 = level0;
-    for (const auto& [name, m] : scene.materials)
-        for (const std::string* map : {&m.albedo_map, &m.specular_map, &m.emissive_map})
-            if (!map->empty()) {
-                // A specular map is data, a factor in [0, 1]: byte / 255, no sRGB decoding.
-                const bool mips = m.sampler.mipmaps != Mipmaps::None, srgb = map != &m.specular_map;
+    for (const auto& [name, m] : scene.materials) {
+        const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
+        for (int binding = 0; binding < 3; ++binding)
+            if (const std::string* map = maps[binding]; !map->empty()) {
+                const bool mips = m.sampler.mipmaps != Mipmaps::None, srgb = map_holds_colour(binding);
                 if (!data->textures.count({*map, mips, srgb})) data->textures[{*map, mips, srgb}] = shared_texture(*map, mips, srgb);
             }
+    }
     return data;
 }
 
@@ -337,7 +342,7 @@ std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int wi
         glm::dvec3 dpx, dpy;
         uv_derivatives(*data, hit, tri, &dx, &dy, &dpx, &dpy);
         const glm::dvec2 scale(m.uv_scale);
-        return lod(data->texture(map, m.sampler, &map != &m.specular_map)->levels[0], dx * scale, dy * scale);
+        return lod(data->texture(map, m.sampler, map_holds_colour(&map == &m.albedo_map ? 0 : &map == &m.specular_map ? 1 : 2))->levels[0], dx * scale, dy * scale);
     };
 }
 
@@ -398,15 +403,15 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
                 const glm::dvec3 t2 = lookup(m.albedo_map, s2 * uv, s2 * dx, s2 * dy);
                 A = glm::mix(glm::mix(t0, t1, double(k.weights.x)), t2, double(k.weights.y));
             } else {
-                A = lookup(m.albedo_map, uv, dx, dy);
+                A = lookup(m.albedo_map, uv, dx, dy, map_holds_colour(0));
             }
             textured.albedo = glm::vec3(glm::dvec3(m.albedo) * A);
         }
         if (!m.specular_map.empty())
-            textured.specular = glm::vec3(glm::dvec3(m.specular) * lookup(m.specular_map, uv, dx, dy, false));
+            textured.specular = glm::vec3(glm::dvec3(m.specular) * lookup(m.specular_map, uv, dx, dy, map_holds_colour(1)));
         if (!m.emissive_map.empty())
             textured.emissive = glm::vec3(glm::dvec3(m.emissive) +
-                                          double(m.emissive_strength) * lookup(m.emissive_map, uv, dx, dy));
+                                          double(m.emissive_strength) * lookup(m.emissive_map, uv, dx, dy, map_holds_colour(2)));
         return shade_point(s, textured, hit.position, N, V, tangent, nullptr, visibility);
     };
 }
