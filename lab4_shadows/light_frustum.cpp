@@ -57,9 +57,10 @@ glm::dmat4 LightFrustum::world_to_clip(const glm::dmat4& relative) const { retur
 
 double LightFrustum::depth_of_texels(const Box& caster, double texels) const {
     if (!perspective) return texels * texel / (far_plane - near_plane);  // orthographic: depth is linear
-    // Perspective: the stored depth changes by b / z² per unit of z (z: the distance along the
-    // face's or spot's axis), and a texel is texel · z wide: b · texels · texel / z, largest at the
-    // caster's nearest z (a spot's: clip w, smallest at a corner of the box).
+    // Perspective: the stored depth's slope per unit of z (z: the distance along the face's or
+    // spot's axis; the slope is the derivative of the function cube_face_depth asks for) times a
+    // texel's width, texel · z, times `texels`; largest at the caster's nearest z (a spot's: clip w,
+    // smallest at a corner of the box).
     double z = kInf;
     if (cube) {
         const glm::dvec3 gap = glm::max(glm::max(caster.lo - origin, origin - caster.hi), glm::dvec3(0.0));
@@ -138,8 +139,7 @@ LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, d
 }
 
 LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters) {
-    // A box's nearest depth over the faces: its nearest point's distance along the axis of the face
-    // that point falls in; its farthest depth at most its farthest corner's.
+    // A box's nearest and farthest depth over the six faces: the near and far planes' bounds.
     const auto nearest = [&](const Box& b) {
         const glm::dvec3 gap = glm::max(glm::max(b.lo - position, position - b.hi), glm::dvec3(0.0));
         return std::max({gap.x, gap.y, gap.z});

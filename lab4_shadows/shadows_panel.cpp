@@ -8,7 +8,7 @@
 #include <string>
 
 namespace {
-const char* const kFilters[] = {"nearest (manual compare)", "bilinear (comparison sampler)"};
+const char* const kFilters[] = {"nearest", "bilinear"};
 const int kResolutions[] = {1, 64, 128, 256, 512, 1024, 2048, 4096, 8192};
 }  // namespace
 

@@ -166,9 +166,9 @@ void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bo
 
 // A receiver less than kTranslucentTexels texels (world units, t) behind the nearest translucent
 // caster is that caster itself (translucent_shadows.glsl). In depth: orthographic t / (far − near);
-// perspective, with a texel τ·z wide at distance z, the stored depth grows by b·t / (z(z + t)) from
-// z to z + t (b = far·near / (far − near), ShadowSlot's second depth constant), = K / z with
-// K = b·k·τ / (1 + k·τ), k = kTranslucentTexels: one division per pixel.
+// perspective, with a texel τ·z wide at distance z and t = k·τ·z (k = kTranslucentTexels), the
+// stored depth at z + t minus that at z (the function of exercise cube_face_depth), which comes
+// to K / z with the constant K below: one division per pixel.
 float TranslucentShadows::tolerance(double texel, uint32_t resolution, bool perspective, double near_plane,
                                     double far_plane) {
     const double tau = texel / resolution;

@@ -473,7 +473,8 @@ copy_links() {
 #       by") that failed in (a) passes: the test isolates e.
 # Prints per exercise how many tests failed and whether each named it; writes the measurement to
 # BUILD/grader/LAB.measured. --rows prints, instead of judging, the rows that say what was measured
-# (each failing test → the exercises whose stub fails it), for tests/graded_exercises.txt.
+# (each failing test → the exercises whose stub fails it), for tests/graded_exercises.txt;
+# PROVE_ONLY=NAME with --rows measures that exercise alone (its rows to merge by hand).
 prove() {
   local build="$1" lab="$2" rows="${3:-}"
   build="$(cd "$build" && pwd)"
@@ -559,6 +560,8 @@ prove() {
   for entry in "${all[@]}"; do
     IFS=$'\037' read -r name file line hint tests <<<"$entry"
     own[$name]="$tests"
+    # PROVE_ONLY=e (with --rows): measure that one exercise, e.g. after a change to what its stub breaks.
+    [ -n "${PROVE_ONLY:-}" ] && [ "$name" != "$PROVE_ONLY" ] && continue
     mirror "$name"
     compile || { failures=$((failures + 1)); continue; }
     if [ "${GRADER_SCOPE:-label}" = own ]; then

@@ -7,7 +7,7 @@
 // A pipeline contains only the lookups its scene needs, each PCF loop with a fixed trip count;
 // a scene without shadow-casting lights has none at all (SHADOWS is false). Slot i's constants:
 // SHADOW_KIND_i 0 no map, 1 2D (directional, spot), 2 cube (point); SHADOW_PCF_i N: an N×N kernel
-// of taps; SHADOW_FILTER_i 0 nearest: manual compare, 1 bilinear: comparison sampler;
+// of taps; SHADOW_FILTER_i 0 nearest, 1 bilinear (both through the comparison sampler);
 // SHADOW_TRANSLUCENT_i: the layers K of the transmittance map beside the depth map (0: none; a
 // constant, so the lookup's loop over them is unrolled); SHADOW_LIGHT_i: whose map it is,
 // LIGHT_ID of the light (−1: nobody's).
@@ -45,8 +45,8 @@ struct ShadowSlot {
                            // be behind it; perspective maps: divided by P's distance along the axis
 };
 layout(std140, set = 0, binding = 3) uniform Shadows { ShadowSlot shadow_slots[4]; };
-// The same depth maps twice: read as numbers (nearest) and through a comparison sampler
-// (bilinear: each tap compares four texels with the reference and filters the results).
+// The same depth maps twice: read as numbers (their size) and through a comparison sampler
+// (each gather compares four texels with the reference depth).
 layout(set = 0, binding = 4) uniform sampler2D shadow_depth[4];
 layout(set = 0, binding = 5) uniform sampler2DShadow shadow_compare[4];
 // Point lights' cube maps, read as 2D arrays of their six faces (layer = face, see shadow_cube).
@@ -91,17 +91,14 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray
     const float tolerance = s.translucent.x * inv_w;  // translucent casters, see above
     // Translucent casters: the light their layers let through to P (once, not per tap).
     const float through = translucent_light(layers, translucent_map, vec3(lookup, 0.0), ref, tolerance);
-    // PCF: N×N taps one texel apart, each lit where the stored depth is not nearer than ref (+
-    // bias: the pass put it there). Nearest: each tap compares its own texel. Bilinear: each tap
-    // compares the four texels around it and weights the results like a linear filter (what a
-    // comparison sampler does with LINEAR; done by hand, as that needs a depth format the device
-    // filters: lavapipe has none). Both read the comparison sampler four texels at a time
-    // (textureGather): N taps touch N (nearest) or N + 1 (bilinear) texels per axis, so 3×3 PCF
-    // costs 4 gathers, not 9 lookups (pcf_share weights each).
-    if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
-        const float stored = texture(depth_map, lookup).r;
-        return outside ? 1.0 : (stored >= ref ? through : 0.0);
-    }
+    // PCF: N×N taps one texel apart, each lit where the comparison sampler says so (the stored
+    // depth carries the bias: the pass put it there). Nearest: each tap compares its own texel.
+    // Bilinear: each tap compares the four texels around it and weights the results like a linear
+    // filter (what a comparison sampler does with LINEAR; done by hand, as that needs a depth
+    // format the device filters: lavapipe has none). Both read the comparison sampler four texels
+    // at a time (textureGather): N taps touch N (nearest) or N + 1 (bilinear) texels per axis, so
+    // 3×3 PCF costs 4 gathers, not 9 lookups, and a single tap 1 gather (pcf_share weights each;
+    // a plain shadow lookup, texture(compare_map, …), crashes Mesa 22.3's lavapipe here).
     const vec2 size = vec2(textureSize(depth_map, 0));
     const vec2 texel = filter_mode == 1 ? lookup * size - 0.5 : lookup * size;
     const vec2 base = floor(texel) - float(pcf / 2);  // the first texel of the footprint
@@ -167,10 +164,6 @@ float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sa
     const float ref = clamp(cube_depth_of(to_p, s), 0.0, 1.0);
     const float tolerance = layers > 0 ? s.translucent.x / z : 0.0;  // translucent casters, see above
     const float through = translucent_light(layers, translucent_map, face, ref, tolerance);
-    if (pcf == 1 && filter_mode == 0) {  // a single tap, a single texel: one plain lookup
-        const float stored = texture(depth_map, face).r;
-        return at_light ? 1.0 : (stored >= ref ? through : 0.0);
-    }
     // The footprint and its weights, as in shadow_2d.
     const float size = float(textureSize(depth_map, 0).x);
     const vec2 texel = filter_mode == 1 ? face.xy * size - 0.5 : face.xy * size;
