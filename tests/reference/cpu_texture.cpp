@@ -101,6 +101,13 @@ double fract(double x) { return x - std::floor(x); }
 // data, a factor in [0, 1]: byte / 255, no sRGB decoding.
 bool map_holds_colour(int binding) { return binding != 1; }
 
+namespace {
+// A material's map at `binding` (0 albedo, 1 specular, 2 emissive); empty: none.
+const std::string& map_at(const lab::MaterialDesc& m, int binding) {
+    return binding == 0 ? m.albedo_map : binding == 1 ? m.specular_map : m.emissive_map;
+}
+}  // namespace
+
 RefTexture make_texture(int width, int height, const std::vector<unsigned char>& srgb_rgba, bool mipmaps, bool srgb) {
     RefTexture t;
     TextureLevel level;
@@ -222,7 +229,7 @@ struct TexturedScene {
     bool level0 = false;
     std::map<std::tuple<std::string, bool, bool>, std::shared_ptr<const RefTexture>> textures;  // [map, mipmaps, sRGB colour]
 
-    const RefTexture* texture(const std::string& map, const lab::SamplerDesc& s, bool srgb = true) const {
+    const RefTexture* texture(const std::string& map, const lab::SamplerDesc& s, bool srgb) const {
         if (map.empty()) return nullptr;
         return textures.at({map, s.mipmaps != Mipmaps::None, srgb}).get();
     }
@@ -317,14 +324,12 @@ std::shared_ptr<TexturedScene> textured_scene(const lab::Scene& scene, int width
     data->width = width;
     data->height = height;
     data->level0 = level0;
-    for (const auto& [name, m] : scene.materials) {
-        const std::string* maps[3] = {&m.albedo_map, &m.specular_map, &m.emissive_map};
+    for (const auto& [name, m] : scene.materials)
         for (int binding = 0; binding < 3; ++binding)
-            if (const std::string* map = maps[binding]; !map->empty()) {
+            if (const std::string& map = map_at(m, binding); !map.empty()) {
                 const bool mips = m.sampler.mipmaps != Mipmaps::None, srgb = map_holds_colour(binding);
-                if (!data->textures.count({*map, mips, srgb})) data->textures[{*map, mips, srgb}] = shared_texture(*map, mips, srgb);
+                if (!data->textures.count({map, mips, srgb})) data->textures[{map, mips, srgb}] = shared_texture(map, mips, srgb);
             }
-    }
     return data;
 }
 
@@ -335,14 +340,15 @@ std::function<double(const Hit&)> make_lod_probe(const lab::Scene& scene, int wi
     return [data, materials = scene.materials](const Hit& hit) {
         if (!hit.hit) return -1e9;
         const lab::MaterialDesc& m = materials.at(hit.material);
-        const std::string& map = !m.albedo_map.empty() ? m.albedo_map : !m.specular_map.empty() ? m.specular_map : m.emissive_map;
+        const int binding = !m.albedo_map.empty() ? 0 : !m.specular_map.empty() ? 1 : 2;
+        const std::string& map = map_at(m, binding);
         if (map.empty()) return -1e9;
         const Triangle tri = triangle_of(*data, hit);
         glm::dvec2 dx, dy;
         glm::dvec3 dpx, dpy;
         uv_derivatives(*data, hit, tri, &dx, &dy, &dpx, &dpy);
         const glm::dvec2 scale(m.uv_scale);
-        return lod(data->texture(map, m.sampler, map_holds_colour(&map == &m.albedo_map ? 0 : &map == &m.specular_map ? 1 : 2))->levels[0], dx * scale, dy * scale);
+        return lod(data->texture(map, m.sampler, map_holds_colour(binding))->levels[0], dx * scale, dy * scale);
     };
 }
 
@@ -381,8 +387,9 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
         dy *= scale;
         lab::SamplerDesc sampler = m.sampler;
         if (data->level0) sampler.filter = Filter::Linear;  // derivatives 0: level 0, bilinear
-        const auto lookup = [&](const std::string& map, glm::dvec2 at, glm::dvec2 ddx, glm::dvec2 ddy, bool srgb = true) {
-            return glm::dvec3(sample(*data->texture(map, m.sampler, srgb), sampler, at, ddx, ddy, variant));
+        // The map at `binding` (map_at), read as map_holds_colour says.
+        const auto lookup = [&](int binding, glm::dvec2 at, glm::dvec2 ddx, glm::dvec2 ddy) {
+            return glm::dvec3(sample(*data->texture(map_at(m, binding), m.sampler, map_holds_colour(binding)), sampler, at, ddx, ddy, variant));
         };
         lab::MaterialDesc textured = m;
         if (!m.albedo_map.empty()) {
@@ -398,20 +405,20 @@ ShadeFn make_texture_shader(const lab::Scene& scene, int width, int height, bool
                                             -k.amplitude.y * std::sin(sv) * (k.frequency.y * duv.x + k.position_frequency.y * dp.x));
                 };
                 const double s1 = k.scales.x, s2 = k.scales.y;
-                const glm::dvec3 t0 = lookup(m.albedo_map, d, dd(dx, dpx), dd(dy, dpy));
-                const glm::dvec3 t1 = lookup(m.albedo_map, s1 * uv, s1 * dx, s1 * dy);
-                const glm::dvec3 t2 = lookup(m.albedo_map, s2 * uv, s2 * dx, s2 * dy);
+                const glm::dvec3 t0 = lookup(0, d, dd(dx, dpx), dd(dy, dpy));
+                const glm::dvec3 t1 = lookup(0, s1 * uv, s1 * dx, s1 * dy);
+                const glm::dvec3 t2 = lookup(0, s2 * uv, s2 * dx, s2 * dy);
                 A = glm::mix(glm::mix(t0, t1, double(k.weights.x)), t2, double(k.weights.y));
             } else {
-                A = lookup(m.albedo_map, uv, dx, dy, map_holds_colour(0));
+                A = lookup(0, uv, dx, dy);
             }
             textured.albedo = glm::vec3(glm::dvec3(m.albedo) * A);
         }
         if (!m.specular_map.empty())
-            textured.specular = glm::vec3(glm::dvec3(m.specular) * lookup(m.specular_map, uv, dx, dy, map_holds_colour(1)));
+            textured.specular = glm::vec3(glm::dvec3(m.specular) * lookup(1, uv, dx, dy));
         if (!m.emissive_map.empty())
             textured.emissive = glm::vec3(glm::dvec3(m.emissive) +
-                                          double(m.emissive_strength) * lookup(m.emissive_map, uv, dx, dy, map_holds_colour(2)));
+                                          double(m.emissive_strength) * lookup(2, uv, dx, dy));
         return shade_point(s, textured, hit.position, N, V, tangent, nullptr, visibility);
     };
 }
