@@ -331,10 +331,9 @@ TEST(Lab3PlainSampler, UvScaleAndOffset) {
 }
 // The seed's distorted albedo (its default numbers) at the mesh's own UVs, then shifted by whole
 // repeats (1, 3): the lab takes them out of uv_offset (leaving uv' = uv, as texture_terms' stub
-// has it too) and hands the shader what they change in the distortion. The README's d and A see
-// uv' + (1, 3): the sine's phase moves by 10·3 and the cosine's by 8·1 (not multiples of 2π),
-// the 0.5× lookup by half a repeat (the 2× one by whole repeats only). A shader that leaves out
-// the phases and the lookups' shifts draws the first picture again, not the reference's second.
+// has it too) and hands the shader what they change in the distortion. The distortion is not
+// periodic in whole repeats, so the reference's second picture differs from its first; a shader
+// that leaves out what the lab handed it draws the first picture again.
 TEST(Lab3PlainSampler, DistortedAlbedo) {
     const std::string map = binary_map("plain_distorted_albedo.png", 2);
     expect_matches(plane_scene("plain_distorted", R"({"albedo_map": ")" + map + R"(", "sampling": "distorted", )" + kPlainSampler + "}"),

@@ -114,11 +114,14 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray
     return outside ? 1.0 : opaque * through;
 }
 
-// For P at v from the light (v = P − light): its distance along the axis of the cube face it falls
-// in, and the depth that face's projection stored for that distance (exercise cube_face_depth).
-// EXERCISE cube_face_depth: face_distance: which face does v fall in, and how far is P along that face's axis (each face is a 90° perspective view along ±X, ±Y or ±Z)? cube_depth_of: what depth did that face's projection store for that distance (the comment on params in ShadowSlot)? Wrong: point lights cast no shadow, or shadows that bend and leak away from the six axes. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
+// For P at v from the light (v = P − light): the cube face it falls in and where on that face
+// (cube_face_uv: s, t in [0, 1] and the layer, 0…5 for +X, −X, +Y, −Y, +Z, −Z), its distance along
+// that face's axis, and the depth that face's projection stored for that distance (exercise
+// cube_face_depth).
+// EXERCISE cube_face_depth: cube_face_uv: which face does direction d fall in, and at which (s, t) on it does a cube sampler read d — the face and texel the map pass drew there (fit_point()'s face views, whose up vectors follow the spec)? Break ties x before y before z. face_distance: how far is P along that face's axis (each face is a 90° perspective view along ±X, ±Y or ±Z)? cube_depth_of: what depth did that face's projection store for that distance (the comment on params in ShadowSlot)? Read the Vulkan spec's "Cube Map Face Selection" and "Cube Map Face Coordinates". Wrong: point lights cast no shadow, or shadows that bend, leak away from the six axes, or fall mirrored or on the wrong side. Checked by Lab4Shadows.PointLightMatchesTheReference, Lab4Shadows.PointLightCubeSeamsShowNoCracks.
 // STUB: float face_distance(vec3 v) { return length(v); }  // the distance to the light, not along a face's axis
 // STUB: float cube_depth_of(vec3 v, ShadowSlot s) { return 0.0; }  // everything in front of every caster: no shadow
+// STUB: vec3 cube_face_uv(vec3 d) { return vec3(0.5, 0.5, 0.0); }  // every direction reads the middle of face +X
 float face_distance(vec3 v) {
     const vec3 a = abs(v);
     return max(a.x, max(a.y, a.z));
@@ -127,10 +130,8 @@ float face_distance(vec3 v) {
 float cube_depth_of(vec3 v, ShadowSlot s) {
     return s.params.y - s.params.z / max(face_distance(v), 1e-30);
 }
-// END EXERCISE
 
-// The face direction d falls in and where, as Vulkan's cube sampling picks them (spec, "Cube Map
-// Face Selection"): the largest coordinate picks the face (layer 0…5: +X, −X, +Y, −Y, +Z, −Z),
+// Vulkan's cube sampling (spec, "Cube Map Face Selection"): the largest coordinate picks the face,
 // the other two divided by it give (s, t) in [0, 1]. Ties go to x, then y.
 vec3 cube_face_uv(vec3 d) {
     const vec3 a = abs(d);
@@ -142,6 +143,7 @@ vec3 cube_face_uv(vec3 d) {
     const float layer = x ? (d.x > 0.0 ? 0.0 : 1.0) : (y ? (d.y > 0.0 ? 2.0 : 3.0) : (d.z > 0.0 ? 4.0 : 5.0));
     return vec3(sc_tc / major * 0.5 + 0.5, layer);
 }
+// END EXERCISE
 
 // Point lights: the direction from the light to P picks the face and texel, and PCF runs on that
 // face's texel grid as shadow_2d does (four compared texels per gather). The maps are read as a 2D
