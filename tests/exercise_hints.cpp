@@ -12,14 +12,15 @@
 //     [ exercise ] it also grades `mip_chain` (lab3_textures/texture.cpp:152): finish `texel_format` first
 // or, when every exercise it needs is done:
 //     [ exercise ] every exercise this test needs is done (texel_format, mip_chain), yet it fails: one
-//                  of them is wrong
-//     [ exercise ] compare your `mip_chain` with its hint: lab3_textures/texture.cpp:152 ...
+//                  of them, or another exercise of the lab, is wrong in a way its stub does not show
+//     [ exercise ] the exercises' own tests name the one that is wrong; run them first:
+//                  ctest --test-dir build -R '^(…)$'
+//     [ exercise ] if they all pass, compare your `mip_chain` with its hint: lab3_textures/texture.cpp:152 ...
 //     [ exercise ] and your `texel_format`, which it needs: lab3_textures/texture.cpp:28
-//     [ exercise ] or another exercise of the lab is wrong in a way its stub does not show; the
-//                  exercises' own tests name the one that is wrong: ctest --test-dir build -R '^(…)$'
 // (the rows list what each exercise's stub fails: a wrong answer, such as a swapped format or a
-// missing barrier, can fail tests its stub does not). A failing test of no exercise, in a student
-// copy, prints that last line alone.
+// missing barrier, can fail tests its stub does not, so a render test cannot tell which exercise is
+// wrong; the exercises' own unit tests can, and the message sends the student there first). A
+// failing test of no exercise, in a student copy, prints the own tests' line alone.
 //
 // "Done" does not depend on the marker line: an exercise is unfinished while its code (between
 // the marker and END EXERCISE, without whitespace and // comments) is still the stub. The stub's
@@ -316,37 +317,38 @@ void print_hint(const std::string& full, const std::string& pictures) {
                 std::printf("[ exercise ] it also grades `%s` (%s:%d): finish `%s` first\n", g->name.c_str(),
                             g->file.c_str(), g->line, m.name.c_str());
     } else {
-        // Done is not right: the test cannot tell which of them is wrong, so it names them all, the
-        // ones it grades first (a mistake in an exercise it only needs fails it just the same).
+        // Done is not right, and the test cannot tell which exercise is wrong: a wrong answer can fail
+        // tests its stub does not (a swapped format, a missing barrier). The exercises' own tests
+        // can: the message sends the student there first, then names the ones this test needs,
+        // those it grades first.
         std::string names;
         for (const Marker* m : order) names += (names.empty() ? "" : ", ") + m->name;
-        if (order.size() == 1)
-            std::printf("[ exercise ] the exercise this test needs is done (%s), yet the test fails\n", names.c_str());
-        else
-            std::printf("[ exercise ] every exercise this test needs is done (%s), yet it fails: one of them is wrong\n",
-                        names.c_str());
-        bool compared = false;  // the first line says "compare", the rest "and"
-        for (const Marker* g : order)
-            if (is_graded(g)) {
-                std::printf("[ exercise ] %s `%s` with its hint: %s:%d\n             Hint: %s\n",
-                            compared ? "and compare your" : "compare your", g->name.c_str(), g->file.c_str(), g->line,
-                            g->hint.c_str());
-                compared = true;
-            }
-        for (const Marker* g : order)
-            if (!is_graded(g)) {
-                std::printf("[ exercise ] %s `%s`, which it needs: %s:%d\n", compared ? "and your" : "compare your",
-                            g->name.c_str(), g->file.c_str(), g->line);
-                compared = true;
-            }
-        // The rows list what each exercise's stub fails; a wrong answer can fail more than its stub.
+        std::printf("[ exercise ] %s (%s), yet it fails: %s, or another exercise of the lab, is wrong in a way its\n"
+                    "             stub does not show\n",
+                    order.size() == 1 ? "the exercise this test needs is done" : "every exercise this test needs is done",
+                    names.c_str(), order.size() == 1 ? "it" : "one of them");
         std::vector<int> labs;
         for (const Marker* m : order)
             if (std::find(labs.begin(), labs.end(), m->lab) == labs.end()) labs.push_back(m->lab);
         const std::string command = own_tests_command(markers, labs);
         if (!command.empty())
-            std::printf("[ exercise ] or another exercise of the lab is wrong in a way its stub does not show; the\n"
-                        "             exercises' own tests name the one that is wrong: %s\n", command.c_str());
+            std::printf("[ exercise ] the exercises' own tests name the one that is wrong; run them first:\n"
+                        "             %s\n", command.c_str());
+        bool compared = false;  // the first line says "if they all pass, compare", the rest "and"
+        for (const Marker* g : order)
+            if (is_graded(g)) {
+                std::printf("[ exercise ] %s `%s` with its hint: %s:%d\n             Hint: %s\n",
+                            compared ? "and compare your" : "if they all pass, compare your", g->name.c_str(),
+                            g->file.c_str(), g->line, g->hint.c_str());
+                compared = true;
+            }
+        for (const Marker* g : order)
+            if (!is_graded(g)) {
+                std::printf("[ exercise ] %s `%s`, which it needs: %s:%d\n",
+                            compared ? "and your" : "if they all pass, compare your", g->name.c_str(), g->file.c_str(),
+                            g->line);
+                compared = true;
+            }
     }
     // tests/reference/image_compare.h writes them left to right in this order.
     if (!pictures.empty()) std::printf("[ exercise ] pictures (expected | actual | difference): %s/\n", pictures.c_str());

@@ -258,6 +258,21 @@ TEST(Lab2Stress, GeometryMatchesReferenceWithoutNaN) {
                              "stress_geometry");
 }
 
+// A point light with k = (0, 0, 1) exactly at a corner of the floor, Gouraud-shaded: that vertex is
+// lit from d = 0, where the falloff's denominator is 0. docs/lighting.md, "Numerical safety", says
+// what the falloff must be there; with the NaN check on, an Inf or a NaN at the vertex spreads over
+// its triangles and shows as magenta.
+TEST(Lab2Stress, PointLightAtAVertexStaysFinite) {
+    expect_matches_reference(scene_variant(kLab, kTestScenes + "/lab2_point.json", "stress_light_at_vertex",
+                                           [](json& scene) {
+                                               scene["lighting"]["nan_check"] = "on";
+                                               scene["lighting"]["shading"] = "gouraud";
+                                               scene["lights"][1]["position"] = {4, 0, -4};  // the floor's corner
+                                               scene["lights"][1]["attenuation"] = {0, 0, 1};
+                                           }),
+                             "stress_light_at_vertex");
+}
+
 class Lab2StressModels : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 TEST_P(Lab2StressModels, NoNaN) {
     // Every model × shading on the stress scene: not one magenta pixel.

@@ -37,6 +37,10 @@ TEST(LightFrustum, OffCentreDirectionalBoxHoldsItsCasters) {
     EXPECT_LT(in_map(f, {301, 43, -119}).z, in_map(f, {301, 40, -119}).z);
     // Its matrix is relative to an origin near the scene: small numbers in float.
     EXPECT_LT(glm::length(f.origin - glm::dvec3(300, 39, -120)), 40.0);
+    // Across the beam the box is the size of what can be shadowed here, a few units, not the
+    // 40-unit floor: a map spread over the whole floor gives the caster's shadow a few texels
+    // (coarse, blocky shadows).
+    EXPECT_LT(f.texel, 10.0) << "the box's larger side across the beam";
 }
 
 // y up in the map is y up in the light's view: a point above the box's centre (as the light

@@ -96,7 +96,7 @@ float power(float x, float n) {
 
 // Light falloff: the fraction of a light's radiance left at the distance d (exercise attenuation).
 float attenuation(vec3 k, float d) {
-    // EXERCISE attenuation: what fraction of a light's radiance is left after the distance d, given k = (constant, linear, quadratic)? And if all are zero, or their sum tiny? Read docs/lighting.md "Light types", "Numerical safety" (MIN_DENOMINATOR). Wrong: lights with no falloff look like flat floodlights, near and far walls equally lit; Inf/NaN pixels. Checked by Lab2Term.PointLightFalloff, Lab2Render.PointLights.
+    // EXERCISE attenuation: what fraction of a light's radiance is left after the distance d, given k = (constant, linear, quadratic)? And if all are zero, or their sum tiny? Read docs/lighting.md "Light types", "Numerical safety" (MIN_DENOMINATOR). Wrong: lights with no falloff look like flat floodlights, near and far walls equally lit; Inf/NaN pixels. Checked by Lab2Term.PointLightFalloff, Lab2Render.PointLights, Lab2Stress.PointLightAtAVertexStaysFinite.
     // STUB: return 1.0;  // no falloff: every point light reaches everywhere at full strength
     if (k.x + k.y + k.z <= 0.0) return 1.0;
     return 1.0 / max(k.x + k.y * d + k.z * d * d, MIN_DENOMINATOR);
