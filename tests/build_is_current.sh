@@ -4,7 +4,9 @@
 # Without it, a change that no longer compiles left the last good binaries and SPIR-V in place and
 # the tests graded those: a broken shader passed them all. Now the build's errors are printed
 # here, and CTest runs none of the tests that need it ("Not Run", failed dependency).
+# -h / --help: the comment at the top of this file, nothing run.
 set -uo pipefail
+case "${1:-}" in -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac
 build="${1:?usage: build_is_current.sh BUILD_DIR}"
 log="$build/build_is_current.log"
 if cmake --build "$build" --parallel "$(nproc)" >"$log" 2>&1; then
