@@ -11,6 +11,7 @@ constexpr VkShaderStageFlags kBoth = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAG
 struct ViewConstants {  // depth_view.vert / .frag
     glm::vec4 rect;     // x0, y0, x1, y1 in normalized device coordinates
     glm::mat4 clip_to_view;
+    glm::vec4 used;     // x: the share of the image's side the map pass drew (a square at its corner)
 };
 }  // namespace
 
@@ -31,7 +32,8 @@ DepthView::DepthView(const lab::VulkanContext& vk, VkRenderPass pass, uint32_t m
                     .build(vk, pass);
 }
 
-void DepthView::draw(VkCommandBuffer cmd, const LayeredTarget& target, const glm::mat4& clip_to_view, VkExtent2D extent) {
+void DepthView::draw(VkCommandBuffer cmd, const LayeredTarget& target, const glm::mat4& clip_to_view, VkExtent2D extent,
+                     uint32_t used) {
     if (target.layers() == 0) return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline);
     const int n = int(target.layers()), columns = std::min(n, 3), rows = (n + columns - 1) / columns;
@@ -49,7 +51,8 @@ void DepthView::draw(VkCommandBuffer cmd, const LayeredTarget& target, const glm
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout, 0, 1, &it->second, 0, nullptr);
         const float x0 = (float(i % columns) - 0.5f * float(columns)) * (width + 0.01f);
         const float y1 = 0.98f - float(rows - 1 - i / columns) * (height + 0.01f);
-        const ViewConstants constants{{x0, y1 - height, x0 + width, y1}, clip_to_view};
+        const float share = used == 0 ? 1.0f : float(used) / float(target.size);
+        const ViewConstants constants{{x0, y1 - height, x0 + width, y1}, clip_to_view, glm::vec4(share, 0.0f, 0.0f, 0.0f)};
         vkCmdPushConstants(cmd, pipeline_.layout, kBoth, 0, sizeof constants, &constants);
         vkCmdDraw(cmd, 6, 1, 0, 0);
     }

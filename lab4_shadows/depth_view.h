@@ -25,7 +25,9 @@ public:
     // first row on top. `clip_to_view`: the inverse of the map's projection; each stored depth is
     // taken back through it to a distance and spread from near (black) to far (white), else a
     // perspective map looks nearly all white. The identity shows the depth as stored (orthographic).
-    void draw(VkCommandBuffer cmd, const LayeredTarget& target, const glm::mat4& clip_to_view, VkExtent2D extent);
+    // `used`: the texels per side the map pass drew (0: all), the square shown.
+    void draw(VkCommandBuffer cmd, const LayeredTarget& target, const glm::mat4& clip_to_view, VkExtent2D extent,
+              uint32_t used = 0);
 
 private:
     const lab::VulkanContext& vk_;

@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
             lighting_panel(lighting);
             const TranslucentLayers* layers = renderer->translucent_layers();  // lab 4: what the last frame's lists lost
             shadows_panel(lighting, app.average_frame_ms(), renderer->shadow_maps_rendered_last_frame(),
-                          layers ? layers->summary() : "");
+                          renderer->shadow_maps_drawn(), layers ? layers->summary() : "");
             if (textures_panel(lighting, renderer->texture_warnings(), renderer->anisotropic_auto(), app.average_frame_ms()) ||
                 !renderer->shadows_match(lighting)) {  // lab 4: or other lights cast shadows, other resolutions
                 // New maps / samplers / sampling mode: new images, descriptor sets and pipelines.
@@ -169,10 +169,13 @@ int main(int argc, char** argv) {
         callbacks.background = [&] { return reloader.scene().background; };
         callbacks.before_pass = [&](const lab::Frame& frame) {  // lab 4: before the pass
             renderer->clear_translucent_layers(frame);
-            renderer->draw_shadow_maps(frame, lighting);
+            const double aspect = double(frame.extent.width) / double(frame.extent.height);
+            renderer->draw_shadow_maps(frame, camera.projection(aspect) * camera.view(), lighting);
         };
         app.run(callbacks);
         std::printf("%s: %d shadow map renders\n", LAB_NAME, renderer->shadow_map_renders());
+        if (renderer->shadow_map_renders() > 0)
+            std::printf("%s: texels per side drawn, of the resolution: %s\n", LAB_NAME, renderer->shadow_maps_drawn().c_str());
         if (TranslucentLayers* layers = renderer->translucent_layers(); layers && !app.has_window()) {
             layers->collect();  // the last frame's counts (the GPU is idle now)
             if (layers->stats().overflow_pixels > 0 || layers->stats().dropped > 0) {

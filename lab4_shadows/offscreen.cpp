@@ -114,8 +114,8 @@ LayeredTarget& LayeredTarget::operator=(LayeredTarget&& other) noexcept {
     return *this;
 }
 
-void LayeredTarget::begin(VkCommandBuffer cmd, uint32_t i, float depth, VkRect2D area) const {
-    begin_offscreen_pass(cmd, pass, framebuffers[i], size, color, depth, area);
+void LayeredTarget::begin(VkCommandBuffer cmd, uint32_t i, float depth, VkRect2D area, uint32_t used) const {
+    begin_offscreen_pass(cmd, pass, framebuffers[i], size, color, depth, area, used);
 }
 
 void LayeredTarget::clear(VkCommandBuffer cmd) const {
@@ -144,8 +144,9 @@ LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass p
 }
 
 void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color,
-                          float depth, VkRect2D area) {
+                          float depth, VkRect2D area, uint32_t used) {
     if (area.extent.width == 0 || area.extent.height == 0) area = {{0, 0}, {size, size}};
+    if (used == 0) used = size;
     VkClearValue clears[2];
     clears[0].color = {{1.0f, 1.0f, 0.0f, 0.0f}};  // transmittance 1, nearest translucent depth 1
     clears[color ? 1 : 0].depthStencil = {depth, 0};
@@ -156,9 +157,13 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
     info.clearValueCount = color ? 2 : 1;
     info.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &info, VK_SUBPASS_CONTENTS_INLINE);
-    const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
+    const VkViewport viewport{0.0f, 0.0f, float(used), float(used), 0.0f, 1.0f};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &area);  // nothing drawn outside the render area
+    // Nothing drawn outside the render area, nor outside the used square.
+    const int32_t x1 = std::min(area.offset.x + int32_t(area.extent.width), int32_t(used)),
+                  y1 = std::min(area.offset.y + int32_t(area.extent.height), int32_t(used));
+    const VkRect2D scissor{area.offset, {uint32_t(std::max(x1 - area.offset.x, 0)), uint32_t(std::max(y1 - area.offset.y, 0))}};
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
 VkRect2D covered_texels(const glm::dmat4& world_to_clip, const std::vector<lab::Box>& boxes, VkExtent2D extent) {

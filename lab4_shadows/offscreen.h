@@ -48,8 +48,8 @@ struct LayeredTarget {
     VkImageView layer(uint32_t i) const { return layer_views.empty() ? image.view.get() : layer_views[i].get(); }
     VkImageView sampled() const { return faces ? faces.get() : image.view.get(); }  // what shaders read
     // begin_offscreen_pass() on layer `i`: cleared, viewport and scissor set; `area` (extent 0:
-    // the whole layer) limits the render area and the scissor.
-    void begin(VkCommandBuffer cmd, uint32_t i, float depth = 1.0f, VkRect2D area = {}) const;
+    // the whole layer) limits the render area and the scissor, `used` (0: all) the viewport.
+    void begin(VkCommandBuffer cmd, uint32_t i, float depth = 1.0f, VkRect2D area = {}, uint32_t used = 0) const;
     // Every layer cleared (a pass begun and ended on each), e.g. before anything samples it.
     void clear(VkCommandBuffer cmd) const;
 };
@@ -61,10 +61,11 @@ LayeredTarget create_layered_target(const lab::VulkanContext& vk, VkRenderPass p
                                     const std::vector<VkImageView>& more = {});
 
 // Begins `pass` on `framebuffer` (size²) over `area` (extent 0: the whole square): colour (if any)
-// cleared to (1, 1, 0, 0), depth to `depth` (1: nothing there) there; the viewport covers the whole
-// square, the scissor `area`.
+// cleared to (1, 1, 0, 0), depth to `depth` (1: nothing there) there; the viewport covers the
+// used² square at (0, 0) (`used` 0: the whole square; a map sized to the picture draws fewer
+// texels than it has), the scissor `area` within it.
 void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, uint32_t size, bool color,
-                          float depth = 1.0f, VkRect2D area = {});
+                          float depth = 1.0f, VkRect2D area = {}, uint32_t used = 0);
 
 // A sampler for depth maps: nearest or linear, optionally comparing the lookup's reference depth
 // with the stored one (which compare op, which border colour outside the map: exercise

@@ -191,9 +191,10 @@ void Renderer::load_textures(const Lighting& lighting) {
     if (any_auto) std::printf("%s\n", samplers_.auto_choice().c_str());
 }
 
-void Renderer::draw_shadow_maps(const lab::Frame& frame, const Lighting& lighting) {
+void Renderer::draw_shadow_maps(const lab::Frame& frame, const glm::dmat4& camera, const Lighting& lighting) {
     if (shadow_maps_->maps() == 0) return;  // no light casts shadows: no pass at all
-    shadow_maps_->record(frame.cmd, lighting, static_cast<GpuShadows*>(shadows_[frame.slot].mapped()), frame.timer);
+    shadow_maps_->record(frame.cmd, lighting, camera, frame.extent, static_cast<GpuShadows*>(shadows_[frame.slot].mapped()),
+                         frame.timer);
 }
 
 void Renderer::clear_translucent_layers(const lab::Frame& frame) {

@@ -29,12 +29,14 @@ public:
     Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target, const lab::Scene& scene,
              const Lighting& lighting, const std::string& shader_dir);
 
-    // Lab 4: before the target's render pass: the shadow maps that need rendering.
-    void draw_shadow_maps(const lab::Frame& frame, const Lighting& lighting);
+    // Lab 4: before the target's render pass: the shadow maps that need rendering, for the
+    // picture the camera (world → clip) takes.
+    void draw_shadow_maps(const lab::Frame& frame, const glm::dmat4& camera, const Lighting& lighting);
     // False when the lights casting shadows (or their resolutions) changed: rebuild the renderer.
     bool shadows_match(const Lighting& lighting) const { return shadow_maps_->matches(lighting); }
     int shadow_map_renders() const { return shadow_maps_->renders(); }
     int shadow_maps_rendered_last_frame() const { return shadow_maps_->rendered_last(); }
+    std::string shadow_maps_drawn() const { return shadow_maps_->drawn(); }  // texels per side drawn, per map
     // Lab 4: before the target's render pass too: empties the translucent layers' lists (nothing
     // without translucent objects); a new frame size gets new lists first.
     void clear_translucent_layers(const lab::Frame& frame);

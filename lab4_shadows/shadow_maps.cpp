@@ -1,5 +1,6 @@
 #include "shadow_maps.h"
 
+#include "map_footprint.h"
 #include "shader.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -149,11 +150,19 @@ void ShadowMaps::write_descriptors(VkDescriptorSet set, VkBuffer uniforms) const
     }
 }
 
+std::string ShadowMaps::drawn() const {
+    std::string text;
+    for (const Map& m : maps_)
+        text += (text.empty() ? "" : ", ") + std::string(m.cube ? "cube " : "") + "light " + std::to_string(m.light) + ": " +
+                std::to_string(m.used) + " of " + std::to_string(m.depth.size);
+    return text;
+}
+
 bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }
 
 void ShadowMaps::draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
     if (slot < 0 || slot >= int(maps_.size())) return;
-    view.draw(cmd, maps_[size_t(slot)].depth, maps_[size_t(slot)].clip_to_view, extent);
+    view.draw(cmd, maps_[size_t(slot)].depth, maps_[size_t(slot)].clip_to_view, extent, maps_[size_t(slot)].used);
 }
 
 // Change tracking: everything a map depends on, as numbers. The light's placement and the
@@ -175,14 +184,46 @@ std::vector<float> ShadowMaps::key_of(const lab::LightDesc& light, const Lightin
     return key;
 }
 
-void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out, lab::PassTimer* timer) {
+void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, const glm::dmat4& camera, VkExtent2D picture,
+                        GpuShadows* out, lab::PassTimer* timer) {
     *out = GpuShadows{};
     rendered_last_ = 0;
+    // Where the picture shows receivers, and how wide its pixels are there (maps that follow the
+    // view), worked out again only when the camera or the picture's size moved, or a map changed.
+    const bool moved = camera != camera_ || picture.width != picture_.width || picture.height != picture_.height;
+    camera_ = camera;
+    picture_ = picture;
+    std::vector<ViewSample> view;
+    bool sampled = false;
     for (size_t slot = 0; slot < maps_.size(); ++slot) {
         Map& map = maps_[slot];
         const lab::LightDesc& light = lighting.lights[size_t(map.light)];
         std::vector<float> key = key_of(light, lighting);
-        if (key != map.key) {  // the light or a caster in its volume changed (or never rendered)
+        const bool changed = key != map.key;  // the light or a caster in its volume changed (or never rendered)
+        if (changed) {
+            map.in_map = casters_for(light, lighting);
+            map.frustum = fit(light, map.cube, map.in_map);
+        }
+        // The texels the picture needs (README "Maps sized to the picture"), or all of them.
+        uint32_t used = map.depth.size;
+        if (light.shadow.fit_to_view && map.fitted && !moved && !changed) {
+            used = map.used;
+        } else if (light.shadow.fit_to_view) {
+            if (!sampled) view = sample_view(camera, picture.width, picture.height, receiver_boxes_);
+            sampled = true;
+            std::vector<FootprintCaster> casters;
+            for (size_t i = 0; i < objects_.size(); ++i)
+                if (map.in_map[i])
+                    casters.push_back({objects_[i].box, int(i),
+                                       !objects_[i].convex || translucent_material(lighting, objects_[i].material)});
+            const bool directional = light.type == lab::LightDesc::Type::Directional;
+            const double texels = texels_needed(map.frustum, view, casters, glm::dvec3(directional ? light.direction : light.position),
+                                                directional);
+            used = footprint_resolution(texels, map.depth.size, map.used);
+        }
+        map.fitted = light.shadow.fit_to_view;
+        if (changed || used != map.used) {
+            map.used = used;
             render(cmd, map, light, lighting, timer);
             map.key = std::move(key);
             ++renders_;
@@ -190,7 +231,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadow
         }
         // Only the lookup's numbers: the map still holds what they describe.
         (*out)[slot] = map.gpu;
-        (*out)[slot].params.x *= light.shadow.normal_offset / float(map.depth.size);
+        (*out)[slot].params.x *= light.shadow.normal_offset / float(map.used);
     }
 }
 
@@ -237,28 +278,30 @@ std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light, const Lig
     return in_map;
 }
 
-void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting,
-                        lab::PassTimer* timer) {
+LightFrustum ShadowMaps::fit(const lab::LightDesc& light, bool cube, const std::vector<bool>& in_map) const {
     const glm::dvec3 position(light.position), direction(light.direction);
-    const std::vector<bool> in_map = casters_for(light, lighting);
     std::vector<Box> casters;
     for (size_t i = 0; i < objects_.size(); ++i)
         if (in_map[i]) casters.push_back(objects_[i].box);
-    LightFrustum f;
-    if (light.type == lab::LightDesc::Type::Directional)
-        f = fit_directional(direction, casters, receiver_boxes_);
-    else if (!map.cube)
-        f = fit_spot(position, direction, light.outer_deg, casters);
-    else  // a point light, or a spot too wide for one map
-        f = fit_point(position, casters);
+    if (light.type == lab::LightDesc::Type::Directional) return fit_directional(direction, casters, receiver_boxes_);
+    if (!cube) return fit_spot(position, direction, light.outer_deg, casters);
+    return fit_point(position, casters);  // a point light, or a spot too wide for one map
+}
+
+// Draws the map's used² texels (record() has fitted it: map.in_map, map.frustum, map.used).
+void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting,
+                        lab::PassTimer* timer) {
+    const std::vector<bool>& in_map = map.in_map;
+    const LightFrustum& f = map.frustum;
+    const uint32_t used = map.used;
     const bool perspective = light.type != lab::LightDesc::Type::Directional;
     // The perspective depth's a and b (glm::perspectiveRH_ZO's third and fourth rows), for the cube lookup and the view.
     const double a = f.far_plane / (f.far_plane - f.near_plane), b = f.far_plane * f.near_plane / (f.far_plane - f.near_plane);
     map.gpu.view_projection = glm::mat4(f.view_projection);
     map.gpu.origin = glm::vec4(glm::vec3(f.origin), 1.0f);
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
-    // normal_offset / resolution.
-    map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, 0.0f);
+    // normal_offset / used. w: the texels per side drawn, a square at the image's corner.
+    map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, float(used));
     // The map view's way back from depth to distance: only the depth row matters, so any field of view does.
     map.clip_to_view = perspective ? glm::mat4(glm::inverse(glm::perspectiveRH_ZO(glm::radians(90.0), 1.0, f.near_plane, f.far_plane)))
                                    : glm::mat4(1.0f);
@@ -273,10 +316,10 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     const double most_texels = std::max(1.0, double(light.shadow.slope_bias));
     if (vk_.enabled_features().depthBiasClamp)
         for (size_t i = 0; i < objects_.size(); ++i)
-            if (in_map[i]) most_bias[i] = on_grid(f.depth_of_texels(objects_[i].box, most_texels / map.depth.size));
+            if (in_map[i]) most_bias[i] = on_grid(f.depth_of_texels(objects_[i].box, most_texels / used));
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
     // and their boxes, whose covered_texels() on each face are all its transmittance pass draws.
-    map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, map.depth.size, perspective, f.near_plane, f.far_plane),
+    map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, used, perspective, f.near_plane, f.far_plane),
                                     0.0f, 0.0f, 0.0f);
     std::vector<Box> translucent;
     for (size_t i = 0; i < objects_.size(); ++i)
@@ -292,11 +335,15 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         // their casters: all reach them, nothing to cull).
         std::vector<bool> in_face = in_map;
         for (size_t i = 0; map.cube && i < objects_.size(); ++i)
-            if (in_face[i] && covered_texels(world_to_clip, {objects_[i].box}, map.depth.size).extent.width == 0)
+            if (in_face[i] && covered_texels(world_to_clip, {objects_[i].box}, used).extent.width == 0)
                 in_face[i] = false;
         {
             const lab::TimedPass timed(timer, cmd, pass);
-            map.depth.begin(cmd, face);
+            // The used² square, and beside it, cleared to "nothing there", as many texels as a
+            // PCF footprint reaches past the edge (15 × 15 bilinear: 8): what the sampler's border
+            // gives where the image ends.
+            const uint32_t cleared = std::min(map.depth.size, used + 8);
+            map.depth.begin(cmd, face, 1.0f, VkRect2D{{0, 0}, {cleared, cleared}}, used);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
             draw_casters(cmd, world_to_clip, lighting, false, in_face, &light.shadow, most_bias);
             vkCmdEndRenderPass(cmd);
@@ -304,7 +351,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
         if (translucent_->active()) {
             const lab::TimedPass timed(timer, cmd, translucent_pass);
             translucent_->render(cmd, map.translucent, face, map.cube,
-                                 covered_texels(world_to_clip, translucent, map.depth.size),
+                                 covered_texels(world_to_clip, translucent, used), used,
                                  [&](uint32_t layer) { draw_casters(cmd, world_to_clip, lighting, true, in_face, nullptr, {}, layer); });
         }
     }

@@ -54,13 +54,18 @@ public:
     // Outside any render pass, before the camera's: renders the maps whose light or casters
     // changed since they were last rendered, and writes every slot's data to `out`. `timer` (may be
     // null) times each map's passes for the panel (pass_timer.h).
-    void record(VkCommandBuffer cmd, const Lighting& lighting, GpuShadows* out, lab::PassTimer* timer);
+    // `camera`: the picture's world → clip and size, which the maps' texels follow (fit_to_view,
+    // map_footprint.h).
+    void record(VkCommandBuffer cmd, const Lighting& lighting, const glm::dmat4& camera, VkExtent2D picture,
+                GpuShadows* out, lab::PassTimer* timer);
     // True when these maps still fit `lighting` (the same lights cast shadows, with the same
     // resolutions); if not, the renderer is rebuilt (new images).
     bool matches(const Lighting& lighting) const;
     int maps() const { return int(maps_.size()); }
     int renders() const { return renders_; }  // maps rendered so far (a cube counts once)
     int rendered_last() const { return rendered_last_; }  // maps the last record() rendered
+    // The texels per side each map's last render drew, of its resolution: "spot 3: 448 of 1024, …".
+    std::string drawn() const;
     // The shadow-map view (UI only): slot's map (a cube: its six faces) drawn by `view`; none for no map.
     void draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const;
 
@@ -69,6 +74,10 @@ private:
         int light = -1;  // index into Lighting::lights
         bool cube = false;
         LayeredTarget depth;          // the map (its size: the resolution), one framebuffer per face
+        uint32_t used = 0;            // the texels per side the last render drew (≤ size): the square at (0, 0)
+        bool fitted = false;          // `used` was fitted to the picture (fit_to_view)
+        std::vector<bool> in_map;     // the casters it holds (casters_for) and where it looks,
+        LightFrustum frustum;         // both as of the last change of its key
         TranslucentShadows::Map translucent;  // translucent scenes: the transmittance map beside it
         std::vector<float> key;  // what the map was rendered from (change tracking)
         GpuShadow gpu{};
@@ -76,6 +85,7 @@ private:
     };
     Map make_map(int light, bool cube, uint32_t resolution, bool translucent) const;
     std::vector<float> key_of(const lab::LightDesc& light, const Lighting& lighting) const;
+    LightFrustum fit(const lab::LightDesc& light, bool cube, const std::vector<bool>& in_map) const;
     void render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& light, const Lighting& lighting,
                 lab::PassTimer* timer);
     void draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting, bool translucent,
@@ -97,4 +107,6 @@ private:
     std::vector<int> layout_;  // layout_of() the lighting the maps were made for
     int renders_ = 0;
     int rendered_last_ = 0;
+    glm::dmat4 camera_{0.0};  // the picture the maps were last sized for (record())
+    VkExtent2D picture_{0, 0};
 };

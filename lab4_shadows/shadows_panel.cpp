@@ -12,12 +12,13 @@ const char* const kFilters[] = {"nearest", "bilinear"};
 const int kResolutions[] = {1, 64, 128, 256, 512, 1024, 2048, 4096, 8192};
 }  // namespace
 
-void shadows_panel(Lighting& l, float frame_ms, int renders, const std::string& translucent_layers) {
+void shadows_panel(Lighting& l, float frame_ms, int renders, const std::string& drawn, const std::string& translucent_layers) {
     ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 390.0f, ImGui::GetIO().DisplaySize.y - 330.0f),
                             ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380.0f, 320.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("Shadows");
     ImGui::Text("%.2f ms/frame, %d shadow map%s drawn last frame", frame_ms, renders, renders == 1 ? "" : "s");
+    if (!drawn.empty()) ImGui::TextWrapped("texels per side drawn: %s", drawn.c_str());
     if (!translucent_layers.empty()) ImGui::TextWrapped("%s", translucent_layers.c_str());
     ImGui::Checkbox("animate lights", &l.animate_lights);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every light circles the Y axis: its map is rendered every frame");
@@ -44,6 +45,9 @@ void shadows_panel(Lighting& l, float frame_ms, int renders, const std::string& 
                     if (ImGui::Selectable(std::to_string(r).c_str(), s.resolution == r)) s.resolution = r;
                 ImGui::EndCombo();
             }
+            ImGui::Checkbox("fit to view", &s.fit_to_view);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Draw about one texel per pixel of the picture, at most the resolution (README \"Maps sized to the picture\")");
             ImGui::SliderInt("PCF N (N x N taps)", &s.pcf, 1, 15);
             s.pcf = std::clamp(s.pcf | 1, 1, 15);  // odd: the kernel has a centre tap
             lab::ui::enum_combo("filter", s.filter, kFilters, 2);

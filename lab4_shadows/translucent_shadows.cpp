@@ -138,7 +138,7 @@ TranslucentShadows::Map TranslucentShadows::make_map(uint32_t resolution, bool c
     return m;
 }
 
-void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,
+void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area, uint32_t used,
                                 const std::function<void(uint32_t layer)>& draw_translucent) const {
     // Where to draw, and where the last render drew and must be cleared back to r = g = 1.
     const VkRect2D pass_area = merged(area, map.drawn[face]);
@@ -147,7 +147,7 @@ void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bo
     const uint32_t K = layers();
     for (uint32_t k = 0; k < K; ++k) {
         const uint32_t layer = face * K + k;
-        map.transmittance.begin(cmd, layer, 1.0f, pass_area);
+        map.transmittance.begin(cmd, layer, 1.0f, pass_area, used);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layer_[cube].layout, 0, 1, &map.previous[layer], 0,
                                 nullptr);
         // Before the last layer: the nearest face beyond layer k − 1 (its depth, then its r and g).

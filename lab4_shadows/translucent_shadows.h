@@ -50,13 +50,14 @@ public:
     Map make_map(uint32_t resolution, bool cube) const;
 
     // Face `face` of `map`: for each layer k, begins its pass over `area` (the texels its
-    // translucent casters cover: covered_texels() in offscreen.h) and what the last render drew —
+    // translucent casters cover in the used² square the depth map drew: covered_texels() in
+    // offscreen.h) and what the last render drew —
     // r cleared to 1, g to depth 1 there, the rest kept — binds the set that reads layer k − 1 and,
     // for each of its pipelines, calls `draw_translucent(k)` (k goes into the push constants). Layers
     // before the last: the nearest face beyond layer k − 1 (its depth first, then its depth and
     // 1 − α); the last: r ×= 1 − α of every face beyond layer k − 1, then the nearest one's depth
     // into g. Nothing at all when `area` and what was drawn are both empty.
-    void render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area,
+    void render(VkCommandBuffer cmd, Map& map, uint32_t face, bool cube, VkRect2D area, uint32_t used,
                 const std::function<void(uint32_t layer)>& draw_translucent) const;
 
     // The push constants' z (translucent_shadow.frag): how much farther (relative) than layer k − 1

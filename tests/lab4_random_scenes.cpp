@@ -5,7 +5,8 @@
 // the widest the format allows (90°), opaque and translucent casters down to 0.001 thick,
 // mirrored and non-uniform transforms, groups of casters far from the origin.
 //
-//   lab4_random_scenes (--first N --count M | --seeds A,B,…) [--translucent-stacks] [--size WxH] [--huge-bias] [--keep]
+//   lab4_random_scenes (--first N --count M | --seeds A,B,…) [--translucent-stacks] [--size WxH] [--huge-bias]
+//                      [--fit-to-view] [--keep]
 //
 // --seeds: the listed seeds alone (CTest's lab4_random_scenes_regressions: seeds that failed once).
 // --translucent-stacks: another kind of scene from the same seeds (generate_stacks(), below): 2-4
@@ -21,6 +22,8 @@
 // so these scenes stand for a device whose unit comes out huge (as an NVIDIA GPU's can for a
 // triangle crossing a point light's plane, seed 7638): lab 4 bounds the bias in world units
 // (depthBiasClamp: max(1, slope_bias) texels at each caster), and the shadows must still match.
+// --fit-to-view: every light's map drawn with as many texels as the picture needs (lab 4 README,
+// "Maps sized to the picture"; CTest: lab4_random_scenes_fit_to_view, seeds 0-49).
 //
 // For each seed: the scene is written as JSON, rendered by the real lab (headless, validation on)
 // and judged with the shadow error metric (docs/testing.md) against the reference, with a 2-pixel
@@ -421,13 +424,14 @@ struct Options {
     int count = 50;
     std::vector<uint64_t> seeds;  // --seeds: these instead of first … first + count − 1
     bool huge_bias = false;
+    bool fit_to_view = false;
     bool translucent_stacks = false;  // generate_stacks() instead of generate()
     int width = 128, height = 96;
     bool keep = false;
 };
 
 int usage(const char* why) {
-    std::fprintf(stderr, "lab4_random_scenes: %s\nusage: lab4_random_scenes (--first N --count M | --seeds A,B,...) [--translucent-stacks] [--size WxH] [--huge-bias] [--keep]\n", why);
+    std::fprintf(stderr, "lab4_random_scenes: %s\nusage: lab4_random_scenes (--first N --count M | --seeds A,B,...) [--translucent-stacks] [--size WxH] [--huge-bias] [--fit-to-view] [--keep]\n", why);
     return 2;
 }
 
@@ -451,6 +455,7 @@ int main(int argc, char** argv) {
                 at = comma + 1;
             }
         } else if (a == "--huge-bias") o.huge_bias = true;
+        else if (a == "--fit-to-view") o.fit_to_view = true;
         else if (a == "--translucent-stacks") o.translucent_stacks = true;
         else if (a == "--keep") o.keep = true;
         else return usage(("unknown option " + a).c_str());
@@ -470,8 +475,13 @@ int main(int argc, char** argv) {
             for (json& light : gen.scene["lights"]) light["shadow"]["bias"] = 1e6;
             gen.summary += ", huge bias";
         }
+        if (o.fit_to_view) {
+            for (json& light : gen.scene["lights"]) light["shadow"]["fit_to_view"] = true;
+            gen.summary += ", maps fitted to the picture";
+        }
         // Each kind its own files (CTest runs the shards side by side in one folder).
-        const std::string stem = (o.translucent_stacks ? "stacks_seed" : "seed") + std::to_string(seed);
+        const std::string stem =
+            std::string(o.fit_to_view ? "fit_" : "") + (o.translucent_stacks ? "stacks_seed" : "seed") + std::to_string(seed);
         const std::string name = dir + "/" + stem;
         const std::string scene = write_file(dir, stem + ".json", gen.scene.dump(1));
         const RenderResult run = render_lab(LAB4_EXE, scene, dir, stem, o.width, o.height);

@@ -158,7 +158,7 @@ const std::vector<std::string> kKeys = {
     "attenuation", "inner_deg", "outer_deg", "materials", "albedo", "specular", "shininess", "emissive",
     "roughness", "f0", "roughness_x", "roughness_y", "minnaert_k", "objects", "mesh", "material",
     "rotation_deg", "scale", "segments", "rings", "crease_deg", "normalize", "cast_shadows", "cast_shadow",
-    "shadow", "resolution", "pcf", "filter", "bias", "slope_bias", "normal_offset", "opacity", "version", "",
+    "shadow", "resolution", "pcf", "filter", "bias", "slope_bias", "normal_offset", "fit_to_view", "opacity", "version", "",
     "a b", "x\ny"};
 
 // Returns true when the case should also get text-level damage (see damage_text).

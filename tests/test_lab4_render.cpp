@@ -193,6 +193,28 @@ TEST(Lab4Shadows, PointLightMatchesTheReference) {
     expect_matches_reference("point", light);
 }
 
+// Maps sized to the picture ("fit_to_view", lab 4 README "Maps sized to the picture"): each light
+// kind with its map drawn at two texels across each pixel of this 320×180 picture instead of
+// 2048² (the run's log says how many it drew: fewer, or the test proves nothing), within the same
+// limits as with every texel.
+TEST(Lab4Shadows, MapsFittedToThePictureMatchTheReference) {
+    const std::vector<std::pair<std::string, json>> lights = {
+        {"fit_directional", directional({-0.6, -1, -0.35})},
+        {"fit_spot", spot({1.5, 4, 2.5}, {-1.5, -4, -2.5}, 40)},
+        {"fit_point", point({1.5, 2.6, 1.6})}};
+    for (auto [name, light] : lights) {
+        light["shadow"] = {{"fit_to_view", true}};
+        expect_matches_reference(name, light);
+        // "…: texels per side drawn, of the resolution: light 0: 704 of 2048"
+        const std::string log = read_text(kLab.path(name + ".log"));
+        const size_t at = log.find("light 0: ");
+        ASSERT_NE(at, std::string::npos) << name << ": the run printed no map size";
+        const int drawn = std::stoi(log.substr(at + 9));
+        EXPECT_GT(drawn, 0) << name;
+        EXPECT_LT(drawn, 2048) << name << ": the map was drawn whole";
+    }
+}
+
 // The bilinear filter: each PCF tap is one lookup through the comparison sampler (compareEnable,
 // a linear filter), which compares the 2×2 texels around the tap and filters the results. Its
 // edges are as sharp as the nearest filter's to within a texel (texels here are under a pixel).

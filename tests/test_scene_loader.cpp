@@ -685,6 +685,7 @@ TEST(SceneLoader, ShadowDefaultsAreTheOnesOfSceneH) {
     EXPECT_FLOAT_EQ(l.shadow.bias, defaults.bias);
     EXPECT_FLOAT_EQ(l.shadow.slope_bias, defaults.slope_bias);
     EXPECT_FLOAT_EQ(l.shadow.normal_offset, defaults.normal_offset);
+    EXPECT_FALSE(l.shadow.fit_to_view);
     EXPECT_FLOAT_EQ(s.materials.at("m").opacity, 1.0f);
     EXPECT_TRUE(s.objects.at(0).cast_shadows);
 }
@@ -694,7 +695,7 @@ TEST(SceneLoader, ShadowKeysParseForEveryLightType) {
         R"({"type": "directional", "cast_shadows": true, "shadow": {"resolution": 512, "pcf": 5,
             "filter": "nearest", "bias": 0.005, "slope_bias": 2.5, "normal_offset": 0.75}})",
         R"({"type": "point", "cast_shadows": true, "shadow": {"resolution": 1, "pcf": 1, "filter": "bilinear",
-            "bias": 0, "slope_bias": 0, "normal_offset": 0}})",
+            "bias": 0, "slope_bias": 0, "normal_offset": 0, "fit_to_view": true}})",
         R"({"type": "spot", "cast_shadows": false, "shadow": {"resolution": 16384, "pcf": 15}})"};
     const lab::LightDesc d = parse(light(lights[0])).lights.at(0);
     EXPECT_TRUE(d.cast_shadows);
@@ -712,6 +713,8 @@ TEST(SceneLoader, ShadowKeysParseForEveryLightType) {
     EXPECT_FLOAT_EQ(p.shadow.bias, 0.0f);
     EXPECT_FLOAT_EQ(p.shadow.slope_bias, 0.0f);
     EXPECT_FLOAT_EQ(p.shadow.normal_offset, 0.0f);
+    EXPECT_TRUE(p.shadow.fit_to_view);
+    EXPECT_FALSE(d.shadow.fit_to_view);
     const lab::LightDesc sp = parse(light(lights[2])).lights.at(0);
     EXPECT_FALSE(sp.cast_shadows);
     EXPECT_EQ(sp.shadow.resolution, 16384);
@@ -746,6 +749,7 @@ TEST(SceneLoader, BadShadowValuesAreRejected) {
     expect_error(shadow(R"("bias": -0.001)"), "lights[0].shadow.bias: ", "must be >= 0, got -0.001");
     expect_error(shadow(R"("slope_bias": -1)"), "lights[0].shadow.slope_bias: ", "must be >= 0");
     expect_error(shadow(R"("normal_offset": -1)"), "lights[0].shadow.normal_offset: ", "must be >= 0");
+    expect_error(shadow(R"("fit_to_view": 1)"), "lights[0].shadow.fit_to_view: ", "expected true or false, got number");
     expect_error(shadow(R"("bias": 1e7)"), "lights[0].shadow.bias: ", "magnitude must be <= 1e6");
     expect_error(shadow(R"("pfc": 3)"), "lights[0].shadow.pfc: ", "did you mean 'pcf'?");
     expect_error(light(R"({"type": "point", "shadow": 2048})"), "lights[0].shadow: ", "expected an object");

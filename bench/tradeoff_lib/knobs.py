@@ -172,6 +172,8 @@ LAB4_FILTERS = ["nearest", "bilinear"]
 # bias 0.005, expressed in our keys (lab4_shadows/README.md: 83886 = 0.005 * 2^24 depth units).
 LAB4_SEED = {"resolution": 2048, "pcf": 3, "filter": "nearest", "bias": 83886, "slope_bias": 0, "normal_offset": 0}
 LAB4_DEFAULT = {"resolution": 2048, "pcf": 1, "filter": "nearest"}  # lab::ShadowDesc's defaults (scene.h)
+# The default's maps sized to the picture (lab4_shadows/README.md, "Maps sized to the picture").
+LAB4_FITTED = dict(LAB4_DEFAULT, fit_to_view=True)
 
 
 def lab4_default_scene():
@@ -200,6 +202,7 @@ def lab4_configs(quick):
                     settings = {"resolution": r, "pcf": n, "filter": flt}
                     out.append(config(f"{r} pcf{n} {flt}", group, with_shadow(scene, settings), knob=r,
                                       default=settings == LAB4_DEFAULT, series=f"{flt} {n}x{n}"))
+        out.append(config("2048 pcf1 nearest, fit to view", group, with_shadow(scene, LAB4_FITTED), knob=2048))
         out.append(config("seed: 2048 pcf3 nearest, bias 0.005", group, with_shadow(scene, LAB4_SEED),
                           knob=2048, seed="seed 000"))
     return out

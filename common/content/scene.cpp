@@ -362,7 +362,7 @@ AmbientDesc read_ambient(const Context& ctx, const json& value) {
     return a;
 }
 
-// Lab 4: "shadow": { "resolution", "pcf", "filter", "bias", "slope_bias", "normal_offset" }.
+// Lab 4: "shadow": { "resolution", "pcf", "filter", "bias", "slope_bias", "normal_offset", "fit_to_view" }.
 ShadowDesc read_shadow(const Context& ctx, const json& value, const std::string& path) {
     ShadowDesc d;
     Section s(ctx, value, path);
@@ -376,6 +376,7 @@ ShadowDesc read_shadow(const Context& ctx, const json& value, const std::string&
     s.number("bias", d.bias, kNonNegative);
     s.number("slope_bias", d.slope_bias, kNonNegative);
     s.number("normal_offset", d.normal_offset, kNonNegative);
+    s.boolean("fit_to_view", d.fit_to_view);
     s.finish();
     return d;
 }

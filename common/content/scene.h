@@ -45,6 +45,7 @@ struct ShadowDesc {
     float bias = 1.0f;           // constant depth bias of the shadow pass (vkCmdSetDepthBias)
     float slope_bias = 1.5f;     // slope-scaled depth bias of the shadow pass
     float normal_offset = 1.0f;  // lookup point moved along the normal, in shadow-map texels
+    bool fit_to_view = false;    // draw only as many texels as the picture can show (≤ resolution per side)
 };
 
 struct LightDesc {

@@ -7,6 +7,7 @@ layout(set = 0, binding = 0) uniform sampler2D depth_map;
 layout(push_constant) uniform ViewConstants {
     vec4 rect;
     mat4 clip_to_view;  // the map's projection, inverted (identity: the depth shown as stored)
+    vec4 used;          // x: the share of the image the map pass drew (a square at its corner)
 } view;
 
 layout(location = 0) in vec2 in_uv;

@@ -40,7 +40,9 @@ struct ShadowSlot {
                            // y, z: the two constants of a perspective map's depth as a function of
                            // the distance along its axis (which function? the README, "Two passes",
                            // and shadow_maps.cpp, where they are computed); z > 0 also marks a
-                           // perspective 2D map (spot)
+                           // perspective 2D map (spot); w: the texels per side the map pass drew,
+                           // a square at the image's corner (lab 4 README, "Maps sized to the
+                           // picture": the picture needs no more)
     vec4 translucent;      // x: how far (in depth) a receiver must lie behind a translucent caster to
                            // be behind it; perspective maps: divided by P's distance along the axis
 };
@@ -90,7 +92,10 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray
     const float ref = clamp(ndc.z, 0.0, 1.0);
     const float tolerance = s.translucent.x * inv_w;  // translucent casters, see above
     // Translucent casters: the light their layers let through to P (once, not per tap).
-    const float through = translucent_light(layers, translucent_map, vec3(lookup, 0.0), ref, tolerance);
+    // The map's drawn square: `used` texels per side of the image's `size`.
+    const float used = s.params.w;
+    const vec2 size = vec2(textureSize(depth_map, 0));
+    const float through = translucent_light(layers, translucent_map, vec3(lookup * used / size, 0.0), ref, tolerance);
     // PCF: N×N taps one texel apart, each lit where the comparison sampler says so (the stored
     // depth carries the bias: the pass put it there). Nearest: each tap compares its own texel.
     // Bilinear: each tap compares the four texels around it and weights the results like a linear
@@ -99,8 +104,7 @@ float shadow_2d(sampler2D depth_map, sampler2DShadow compare_map, sampler2DArray
     // at a time (textureGather): N taps touch N (nearest) or N + 1 (bilinear) texels per axis, so
     // 3×3 PCF costs 4 gathers, not 9 lookups, and a single tap 1 gather (pcf_share weights each;
     // a plain shadow lookup, texture(compare_map, …), crashes Mesa 22.3's lavapipe here).
-    const vec2 size = vec2(textureSize(depth_map, 0));
-    const vec2 texel = filter_mode == 1 ? lookup * size - 0.5 : lookup * size;
+    const vec2 texel = filter_mode == 1 ? lookup * used - 0.5 : lookup * used;
     const vec2 base = floor(texel) - float(pcf / 2);  // the first texel of the footprint
     const vec2 f = filter_mode == 1 ? fract(texel) : vec2(0.0);
     float sum = 0.0;
@@ -165,13 +169,14 @@ float shadow_cube(sampler2DArray depth_map, sampler2DArrayShadow compare_map, sa
     // Beyond the far plane (past the farthest caster): compared as 1, as in shadow_2d.
     const float ref = clamp(cube_depth_of(to_p, s), 0.0, 1.0);
     const float tolerance = layers > 0 ? s.translucent.x / z : 0.0;  // translucent casters, see above
-    const float through = translucent_light(layers, translucent_map, face, ref, tolerance);
-    // The footprint and its weights, as in shadow_2d.
+    // The footprint and its weights, as in shadow_2d, on the face's drawn square (used² of size²).
+    const float used = s.params.w;
     const float size = float(textureSize(depth_map, 0).x);
-    const vec2 texel = filter_mode == 1 ? face.xy * size - 0.5 : face.xy * size;
+    const float through = translucent_light(layers, translucent_map, vec3(face.xy * used / size, face.z), ref, tolerance);
+    const vec2 texel = filter_mode == 1 ? face.xy * used - 0.5 : face.xy * used;
     const vec2 base = floor(texel) - float(pcf / 2);
     const vec2 f = filter_mode == 1 ? fract(texel) : vec2(0.0);
-    const vec2 inside = vec2(1.0 / size, 1.0 - 1.0 / size);  // a gather's centre, a texel inside the face
+    const vec2 inside = vec2(1.0 / size, (used - 1.0) / size);  // a gather's centre, a texel inside the square
     float sum = 0.0;
     for (int by = 0; by <= pcf; by += 2) {
         for (int bx = 0; bx <= pcf; bx += 2) {
