@@ -38,16 +38,16 @@ std::vector<ViewSample> sample_view(const glm::dmat4& world_to_clip, uint32_t wi
 // Texels across one pixel's width. One would do for the picture's sharpness, but a shadow edge
 // snaps to the map's texels (and the normal offset moves it by one more): at one texel per pixel
 // the edges land a pixel off the ray-traced truth, at two within it (README, "Maps sized to the
-// picture": 1000 random scenes at 0, 1, 2).
+// picture": 1000 random scenes with every texel, one and two texels per pixel).
 constexpr double kTexelsPerPixel = 2.0;
 
 // The texels per side at which a map of `f` has kTexelsPerPixel texels across each pixel wherever
 // the picture can show one of its shadows: kTexelsPerPixel · max over the samples of (a texel's
-// width there, for a map of one texel) / (the pixel's width). A sample counts only where a caster can shadow it or a pixel
-// around it (the ray to the light, `light`: its position, or with `directional` the way it
-// travels, meets a caster's box grown by the sample's reach), and only inside the map (a 2D
-// map's edges; behind the light). A lit floor far from every shadow needs no texels at all.
-// 0 when no sample counts.
+// width there, for a map of one texel) / (the pixel's width). A sample counts only where a
+// caster can shadow it or a pixel around it (the ray to the light, `light`: its position, or
+// with `directional` the way it travels, meets another caster's box, or its own if it shadows
+// itself, grown by the sample's reach), and only inside the map (a 2D map's edges; behind the
+// light). A lit floor far from every shadow needs no texels at all. 0 when no sample counts.
 double texels_needed(const LightFrustum& f, const std::vector<ViewSample>& samples,
                      const std::vector<FootprintCaster>& casters, const glm::dvec3& light, bool directional);
 
