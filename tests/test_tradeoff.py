@@ -327,7 +327,8 @@ class Configurations(unittest.TestCase):
 
     def test_lab4(self):
         quick, full = knobs.lab4_configs(True), knobs.lab4_configs(False)
-        self.assertEqual((len(quick), len(full)), (2 * (2 * 2 * 2 + 1), 2 * (2 * 4 * 4 + 1)))
+        # Per scene: filter × kernels × resolutions, the fitted default and the seed.
+        self.assertEqual((len(quick), len(full)), (2 * (2 * 2 * 2 + 2), 2 * (2 * 4 * 4 + 2)))
         self.assertEqual([(c["group"], c["config"]) for c in full if c["default"]],
                          [("default scene", "2048 pcf1 nearest"), ("grazing stress", "2048 pcf1 nearest")])
         seed = [c for c in full if c["seed"]][0]
@@ -335,6 +336,12 @@ class Configurations(unittest.TestCase):
         self.assertTrue(shadows and all(s == knobs.LAB4_SEED for s in shadows))
         self.assertEqual(quick[1]["config"], "2048 pcf1 nearest")
         self.assertEqual(quick[1]["series"], "nearest 1x1")
+        # The default with maps sized to the picture: in no series (its knob is the cap, not the size).
+        fitted = [c for c in full if c["config"] == "2048 pcf1 nearest, fit to view"]
+        self.assertEqual(len(fitted), 2)
+        self.assertTrue(all(not c["series"] and not c["default"] for c in fitted))
+        shadows = [l["shadow"] for l in fitted[0]["scene"]["lights"] if l.get("cast_shadows")]
+        self.assertTrue(shadows and all(s == dict(knobs.LAB4_DEFAULT, fit_to_view=True) for s in shadows))
 
     def test_lab_settings(self):
         self.assertEqual([knobs.frames(lab, False) for lab in sorted(knobs.KNOBS)], [61, 21, 21, 16])
