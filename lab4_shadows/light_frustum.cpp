@@ -164,21 +164,24 @@ LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& caste
     return f;
 }
 
-bool can_shadow(const Box& caster, const Box& receiver, const glm::dvec3& direction) {
-    // The swept caster {c + t·d, t ≥ 0} meets the receiver exactly when the ray t·d (t ≥ 0) meets
-    // the Minkowski difference receiver − caster = [R.lo − C.hi, R.hi − C.lo]: a slab test.
-    const glm::dvec3 d = unit_or_down(direction), lo = receiver.lo - caster.hi, hi = receiver.hi - caster.lo;
-    double t0 = 0.0, t1 = kInf;
+double ray_entry(const glm::dvec3& a, const glm::dvec3& d, const Box& box, double t_max) {
+    double t0 = 0.0, t1 = t_max;
     for (int i = 0; i < 3; ++i) {
         if (std::abs(d[i]) < 1e-300) {
-            if (lo[i] > 0.0 || hi[i] < 0.0) return false;  // parallel to the slab and outside it
+            if (a[i] < box.lo[i] || a[i] > box.hi[i]) return -1.0;  // parallel to the slab and outside it
             continue;
         }
-        const double a = lo[i] / d[i], b = hi[i] / d[i];
-        t0 = std::max(t0, std::min(a, b));
-        t1 = std::min(t1, std::max(a, b));
+        const double u = (box.lo[i] - a[i]) / d[i], v = (box.hi[i] - a[i]) / d[i];
+        t0 = std::max(t0, std::min(u, v));
+        t1 = std::min(t1, std::max(u, v));
     }
-    return t0 <= t1;
+    return t0 <= t1 ? t0 : -1.0;
+}
+
+bool can_shadow(const Box& caster, const Box& receiver, const glm::dvec3& direction) {
+    // The swept caster {c + t·d, t ≥ 0} meets the receiver exactly when the ray t·d (t ≥ 0) meets
+    // the Minkowski difference receiver − caster = [R.lo − C.hi, R.hi − C.lo].
+    return ray_entry(glm::dvec3(0.0), unit_or_down(direction), Box{receiver.lo - caster.hi, receiver.hi - caster.lo}, kInf) >= 0.0;
 }
 
 bool can_shadow_from(const Box& caster, const Box& receiver, const glm::dvec3& position) {

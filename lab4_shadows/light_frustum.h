@@ -52,6 +52,10 @@ LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& caste
 constexpr double kWidestSpotMapDeg = 60.0;
 bool uses_cube_map(const lab::LightDesc& light);
 
+// Where the ray a + t·d, t in [0, t_max], first enters `box`: that t (0 when a is inside it), or −1
+// when it misses (the slab test: the t where it is between each pair of planes, intersected).
+double ray_entry(const glm::dvec3& a, const glm::dvec3& d, const Box& box, double t_max);
+
 // Can anything inside box `caster` shadow anything inside box `receiver`? False only when it
 // cannot; a caster that shadows no receiver is left out of the fit, so that a big floor under
 // everything does not spread the map's texels over itself. Directional light (`direction`: the

@@ -12,23 +12,6 @@ glm::dvec3 unproject(const glm::dmat4& clip_to_world, const glm::dvec3& ndc) {
     return glm::dvec3(p) / p.w;
 }
 
-// Where the segment from a to b (t in 0…1; `ray`: t ≥ 0) first enters `box`; a point inside the
-// box is t = 0; −1: it misses.
-double entry(const glm::dvec3& a, const glm::dvec3& b, const Box& box, bool ray = false) {
-    const glm::dvec3 d = b - a;
-    double t0 = 0.0, t1 = ray ? std::numeric_limits<double>::infinity() : 1.0;
-    for (int i = 0; i < 3; ++i) {
-        if (d[i] == 0.0) {
-            if (a[i] < box.lo[i] || a[i] > box.hi[i]) return -1.0;
-            continue;
-        }
-        const double u = (box.lo[i] - a[i]) / d[i], v = (box.hi[i] - a[i]) / d[i];
-        t0 = std::max(t0, std::min(u, v));
-        t1 = std::min(t1, std::max(u, v));
-    }
-    return t0 <= t1 ? t0 : -1.0;
-}
-
 // A map's view: (world − origin) → clip, and back.
 struct MapView {
     glm::dmat4 relative, back;
@@ -62,7 +45,7 @@ std::vector<ViewSample> sample_view(const glm::dmat4& world_to_clip, uint32_t wi
             double t = std::numeric_limits<double>::infinity();
             int hit = -1;
             for (size_t i = 0; i < receivers.size(); ++i)
-                if (const double e = entry(near, far, receivers[i]); e >= 0.0 && e < t) {
+                if (const double e = ray_entry(near, far - near, receivers[i], 1.0); e >= 0.0 && e < t) {
                     t = e;
                     hit = int(i);
                 }
@@ -83,8 +66,10 @@ std::vector<ViewSample> sample_view(const glm::dmat4& world_to_clip, uint32_t wi
 double texels_needed(const LightFrustum& f, const std::vector<ViewSample>& samples,
                      const std::vector<FootprintCaster>& casters, const glm::dvec3& light, bool directional) {
     std::vector<MapView> views;  // the 2D map, or the cube's six faces
-    for (const glm::dmat4& m : f.cube ? std::vector<glm::dmat4>(f.faces.begin(), f.faces.end()) : std::vector<glm::dmat4>{f.view_projection})
+    for (size_t k = 0; k < (f.cube ? f.faces.size() : 1); ++k) {
+        const glm::dmat4& m = f.cube ? f.faces[k] : f.view_projection;
         views.push_back({m, glm::inverse(m)});
+    }
     double most = 0.0;
     for (const ViewSample& s : samples) {
         // Can a caster shadow this sample, or a pixel within its reach? (A ray to the light that
@@ -93,7 +78,8 @@ double texels_needed(const LightFrustum& f, const std::vector<ViewSample>& sampl
         const bool shadowed = std::any_of(casters.begin(), casters.end(), [&](const FootprintCaster& c) {
             if (c.receiver == s.receiver && !c.shadows_itself) return false;
             const Box grown{c.box.lo - s.reach, c.box.hi + s.reach};
-            return directional ? entry(s.point, s.point - light, grown, true) >= 0.0 : entry(light, s.point, grown) >= 0.0;
+            return directional ? ray_entry(s.point, -light, grown, std::numeric_limits<double>::infinity()) >= 0.0
+                               : ray_entry(light, s.point - light, grown, 1.0) >= 0.0;
         });
         if (!shadowed) continue;
         double texel = 0.0;  // a cube: the face whose view holds the point (on an edge between two, the wider texel)

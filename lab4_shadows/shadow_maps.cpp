@@ -214,8 +214,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, const glm
             std::vector<FootprintCaster> casters;
             for (size_t i = 0; i < objects_.size(); ++i)
                 if (map.in_map[i])
-                    casters.push_back({objects_[i].box, int(i),
-                                       !objects_[i].convex || translucent_material(lighting, objects_[i].material)});
+                    casters.push_back({objects_[i].box, int(i), shadows_itself(i, lighting)});
             const bool directional = light.type == lab::LightDesc::Type::Directional;
             const double texels = texels_needed(map.frustum, view, casters, glm::dvec3(directional ? light.direction : light.position),
                                                 directional);
@@ -258,6 +257,11 @@ void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_cl
     }
 }
 
+// Can object i shadow itself? Not when it is convex and opaque: it shadows only its own unlit side.
+bool ShadowMaps::shadows_itself(size_t i, const Lighting& lighting) const {
+    return !objects_[i].convex || translucent_material(lighting, objects_[i].material);
+}
+
 // Which objects a light's map holds (per object): those with cast_shadows, inside a spot's cone,
 // that can shadow a receiver — another object, or themselves when their mesh is not convex or
 // they are translucent (an opaque convex object shadows only its own unlit side; through a
@@ -272,7 +276,7 @@ std::vector<bool> ShadowMaps::casters_for(const lab::LightDesc& light, const Lig
         const Box& c = objects_[i].box;
         if (!objects_[i].casts || (spot && !in_spot_cone(c, position, direction, light.outer_deg))) continue;
         for (size_t j = 0; j < objects_.size() && !in_map[i]; ++j)
-            if (i != j || !objects_[i].convex || translucent_material(lighting, objects_[i].material))
+            if (i != j || shadows_itself(i, lighting))
                 in_map[i] = directional ? can_shadow(c, objects_[j].box, direction) : can_shadow_from(c, objects_[j].box, position);
     }
     return in_map;

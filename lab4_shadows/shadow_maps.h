@@ -93,6 +93,7 @@ private:
                       uint32_t layer = 0) const;
     uint32_t clamp_resolution(int requested, bool cube) const;
     std::vector<bool> casters_for(const lab::LightDesc& light, const Lighting& lighting) const;
+    bool shadows_itself(size_t object, const Lighting& lighting) const;
 
     const lab::VulkanContext& vk_;
     std::vector<Caster> objects_;
