@@ -27,9 +27,9 @@ struct Camera {
 
     // Transform parameters (degrees; positive = counter-clockwise about the axis).
     glm::dvec3 position{0.0, 2.0, 6.0};
-    double yaw_deg = 0.0;    // about world Y: positive turns left
-    double pitch_deg = 0.0;  // about the camera's X: positive looks up
-    double roll_deg = 0.0;   // about the camera's Z (the view axis)
+    double yaw_deg = 0.0;    // about Y: positive turns left
+    double pitch_deg = 0.0;  // about X: positive looks up
+    double roll_deg = 0.0;   // about Z
 
     // Projection.
     double fov_y_deg = 60.0;

@@ -12,7 +12,8 @@ double degrees(double rad) { return rad * 180.0 / kPi; }
 
 // Rotation of v by `angle` radians about the unit axis k (Rodrigues' formula):
 // v' = v·cosθ + (k × v)·sinθ + k·(k·v)·(1 − cosθ)
-glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& k, double angle) {
+// (maybe_unused: a student copy's stubbed orbit does not call it yet.)
+[[maybe_unused]] glm::dvec3 rotate_about(const glm::dvec3& v, const glm::dvec3& k, double angle) {
     const double c = std::cos(angle), s = std::sin(angle);
     return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1.0 - c);
 }
@@ -154,20 +155,25 @@ void Camera::rotate(double yaw_delta_deg, double pitch_delta_deg) {
         pitch_deg = std::clamp(pitch_deg + pitch_delta_deg, -89.0, 89.0);  // never flip over the pole
         return;
     }
-    // Look-At: orbit the eye around the target at constant distance — first
-    // about the up axis (yaw), then about the camera's right axis (pitch:
-    // positive looks up, so the eye moves down towards the "equator" and below),
-    // stopping 1° short of the poles where right would become undefined.
+    // Look-At: the drag moves the eye over the sphere around the target; the view keeps
+    // looking at the target from the same distance.
+    // EXERCISE orbit: move `eye` over the sphere around `target` for a drag of yaw_delta_deg and pitch_delta_deg, with the view turning the same way as a Transform camera's (positive yaw turns left, positive pitch looks up). About which axis does each angle turn the eye, and which way? Where on the sphere must the eye stop (the tests want 1° short of that place, measured at the target), and what goes wrong if it does not? What if eye == target? Read this lab's README "Orbiting the target", rotate_about and normalize_or above. Wrong: dragging up turns the view down, the distance creeps, the picture flips over the top. Checked by Controls.Orbit*.
+    // STUB: return;  // the eye stays put: dragging turns nothing
+    // Yaw turns the offset eye − target about the up axis; pitch then changes its polar angle
+    // (measured from up) about the axis up × offset. Positive pitch looks up, so the eye moves
+    // down towards the "equator" and below. The polar angle stays within [1°, 179°]: at a pole
+    // up × offset is zero (no axis to pitch about) and the view is parallel to up, where
+    // look_at_camera_to_world has to guess a right axis, so the picture would spin.
     const glm::dvec3 axis = normalize_or(up, {0.0, 1.0, 0.0});
-    glm::dvec3 offset = eye - target;
-    const double distance = glm::length(offset);
-    if (distance == 0.0) return;
-    offset = rotate_about(offset, axis, radians(yaw_delta_deg));
-    const double polar = std::acos(std::clamp(glm::dot(offset / distance, axis), -1.0, 1.0));
+    const double radius = glm::length(eye - target);
+    if (radius == 0.0) return;
+    glm::dvec3 offset = rotate_about(eye - target, axis, radians(yaw_delta_deg));
+    const double polar = std::acos(std::clamp(glm::dot(offset / radius, axis), -1.0, 1.0));
     const double new_polar = std::clamp(polar + radians(pitch_delta_deg), radians(1.0), radians(179.0));
     const glm::dvec3 side = glm::cross(axis, offset);
     if (glm::length(side) > 0.0) offset = rotate_about(offset, glm::normalize(side), new_polar - polar);
     eye = target + offset;
+    // END EXERCISE
 }
 
 void Camera::zoom(double wheel_steps) {

@@ -32,7 +32,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -355,36 +354,25 @@ void print_hint(const std::string& full, const std::string& pictures) {
 }
 
 #ifndef LAB_EXERCISE_HINT_MAIN
-// The folder of the newest PNG written under the tests' output (lab_runner.h's test_output_dir)
-// since `since`: where a failing render test left its pictures; empty when it wrote none (a unit
-// test), so that the hint points at pictures only when there are some.
-std::string pictures_since(fs::file_time_type since) {
-    const char* env = std::getenv("LAB_TEST_OUTPUT");
-    const fs::path root = env && *env ? fs::path(env) : fs::path(LAB_BINARY_DIR) / "test_output";
-    std::error_code ec;
-    fs::path newest;
-    fs::file_time_type newest_time = since;
-    for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
-         it.increment(ec)) {
-        if (!it->is_regular_file(ec) || it->path().extension() != ".png") continue;
-        const fs::file_time_type t = it->last_write_time(ec);
-        if (!ec && t >= newest_time) newest = it->path(), newest_time = t;
+// Where a failing test left its pictures: the folder a render recorded as the test's "pictures"
+// property (tests/lab_render.h), relative to the source folder as the README writes it; empty for
+// a test that rendered nothing (a unit test). Not the newest picture on disk: with -j2 another
+// test's render lands there while a unit test runs.
+std::string pictures_of(const ::testing::TestResult& result) {
+    for (int i = 0; i < result.test_property_count(); ++i) {
+        const ::testing::TestProperty& property = result.GetTestProperty(i);
+        if (std::string(property.key()) != "pictures") continue;
+        const fs::path dir = property.value();
+        const fs::path relative = dir.lexically_relative(LAB_SOURCE_DIR);
+        return (relative.empty() || *relative.begin() == ".." ? dir : relative).string();
     }
-    if (newest.empty()) return "";
-    const fs::path dir = newest.parent_path();
-    const fs::path relative = dir.lexically_relative(LAB_SOURCE_DIR);  // as the README writes it
-    return (relative.empty() || *relative.begin() == ".." ? dir : relative).string();
+    return "";
 }
 
 class ExerciseHints : public ::testing::EmptyTestEventListener {
-    fs::file_time_type started_{};
-    // (50 ms early: the kernel stamps files from a coarser clock than now())
-    void OnTestStart(const ::testing::TestInfo&) override {
-        started_ = fs::file_time_type::clock::now() - std::chrono::milliseconds(50);
-    }
     void OnTestEnd(const ::testing::TestInfo& info) override {
         if (!info.result()->Failed()) return;
-        print_hint(std::string(info.test_suite_name()) + "." + info.name(), pictures_since(started_));
+        print_hint(std::string(info.test_suite_name()) + "." + info.name(), pictures_of(*info.result()));
     }
 };
 

@@ -54,6 +54,9 @@ public:
     }
     RenderResult run(const std::string& scene, const std::string& name, int width, int height,
                      const std::string& extra_args = "") const {
+        // The folder a failing test's hint points at (tests/exercise_hints.cpp): this test's own
+        // pictures are there, and a unit test, which renders nothing, gets no such line.
+        ::testing::Test::RecordProperty("pictures", dir_);
         return render_lab(exe_, scene, dir_, name, width, height, extra_args);
     }
 

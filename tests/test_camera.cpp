@@ -150,8 +150,8 @@ TEST(Transform, PositivePitchLooksUp) { expect_reference_pose(transform({0, 0, 0
 
 TEST(Transform, RollTurnsTheImage) { expect_reference_pose(transform({0, 0, 0}, 0, 0, 90)); }
 
-// All three angles at once: the order the rotations apply in matters (the scene format's order).
-TEST(Transform, RotationOrderIsYawPitchRoll) { expect_reference_pose(transform({0, 0, 0}, 90, 30, 45)); }
+// All three angles at once: the order the rotations apply in matters.
+TEST(Transform, AllThreeAnglesAtOnce) { expect_reference_pose(transform({0, 0, 0}, 90, 30, 45)); }
 
 TEST(Transform, PitchAtPlusMinus90StaysRigid) {
     for (double pitch : {-90.0, 90.0}) {
@@ -254,11 +254,46 @@ TEST(Controls, OrbitKeepsTheDistanceAndTarget) {
 }
 
 TEST(Controls, OrbitStopsShortOfThePoles) {
+    // Far over the top (looking down), then far under the bottom (looking up): 1° from +Y, 1° from −Y.
+    for (const double pitch : {-500.0, 500.0}) {
+        Camera c = look_at({0, 0, 5}, {0, 0, 0});
+        c.rotate(0.0, pitch);
+        const double polar = std::acos(glm::dot(glm::normalize(c.eye - c.target), glm::dvec3(0, 1, 0)));
+        EXPECT_NEAR(polar * 180.0 / 3.14159265358979323846, pitch < 0.0 ? 1.0 : 179.0, 1e-9) << "pitch " << pitch;
+        EXPECT_NEAR(glm::length(c.eye - c.target), 5.0, 1e-12);
+    }
+}
+
+// Worked by hand: where the eye must be after each drag. A positive yaw turns the view left and a
+// positive pitch looks up, as in Transform mode.
+TEST(Controls, OrbitMovesTheEyeAsWorkedByHand) {
     Camera c = look_at({0, 0, 5}, {0, 0, 0});
-    c.rotate(0.0, -500.0);  // try to go far over the top
-    const double polar = std::acos(glm::dot(glm::normalize(c.eye - c.target), glm::dvec3(0, 1, 0)));
-    EXPECT_NEAR(polar * 180.0 / 3.14159265358979323846, 1.0, 1e-9);
-    expect_rigid(c.view());
+    c.rotate(90.0, 0.0);  // looking along -Z, a quarter turn left: along -X
+    expect_vec(c.eye, {5, 0, 0});
+    c.rotate(0.0, 30.0);  // 30° up: the eye 30° below the equator, 120° from +Y
+    expect_vec(c.eye, {4.330127018922193, -2.5, 0});
+    expect_vec(c.target, {0, 0, 0});
+
+    // Another target and up = +Z; -45° looks down.
+    Camera z = look_at({6, 2, 3}, {1, 2, 3}, {0, 0, 1});
+    z.rotate(90.0, 0.0);
+    expect_vec(z.eye, {1, 7, 3});
+    z.rotate(0.0, -45.0);
+    expect_vec(z.eye, {1, 2 + 3.5355339059327378, 3 + 3.5355339059327378});
+}
+
+// Stress: the same drags at 10⁶ and 10⁻³ from the target keep the distance to 1e-12 of it, and
+// an eye on the target (no sphere to move on) stays put, finite.
+TEST(Controls, OrbitAtHugeAndTinyDistances) {
+    for (const double d : {1e6, 1e-3}) {
+        Camera c = look_at({0, 0.5 * d, d}, {0, 0, 0});
+        const double distance = glm::length(c.eye - c.target);
+        for (int i = 0; i < 50; ++i) c.rotate(23.0, i % 2 ? 17.0 : -11.0);
+        EXPECT_NEAR(glm::length(c.eye - c.target), distance, 1e-12 * distance) << "distance " << d;
+    }
+    Camera same = look_at({1, 2, 3}, {1, 2, 3});
+    same.rotate(30.0, 20.0);
+    expect_vec(same.eye, {1, 2, 3}, 0.0);
 }
 
 TEST(Controls, ZoomIsExponentialAndClamped) {

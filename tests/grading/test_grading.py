@@ -23,10 +23,9 @@ import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 LAB = "lab1_camera"
-EXERCISES = ["look_at", "transform", "projection", "mode_switch", "mvp"]
+EXERCISES = ["look_at", "transform", "projection", "mode_switch", "orbit"]
 CAMERA = "lab1_camera/camera.cpp"
-SHADER = "shaders/lab1_camera/unlit.vert"
-FILE_OF = {"look_at": CAMERA, "transform": CAMERA, "projection": CAMERA, "mode_switch": CAMERA, "mvp": SHADER}
+FILE_OF = {"look_at": CAMERA, "transform": CAMERA, "projection": CAMERA, "mode_switch": CAMERA, "orbit": CAMERA}
 
 
 def skip(why, test="grading_lab1"):
@@ -127,15 +126,6 @@ def run(tmp):
     d = make("loop_cpp")
     fill(d, "transform", ["    { volatile bool spin = true; while (spin) {} }\n"] + solution("transform"))
     expected["loop_cpp"] = ([1, 0, 1, 1, 1], ["did not finish (a crash or the time limit): transform"])
-    d = make("loop_shader")
-    # Endless for a perspective projection (its [3][3] is 0), which no compiler can know. On
-    # lavapipe it ends all the same: llvmpipe caps a shader invocation's loop iterations (65535,
-    # docs/solutions.md), so the region is graded on what it then draws: the solution's picture.
-    # (On a GPU it would spin: the per-test wall-time limit, as loop_cpp shows, stops it.) What
-    # this case asserts: the run finishes, the other regions' credit is untouched.
-    fill(d, "mvp", ["    int spin = 0;\n", "    while (frame.projection[3][3] == 0.0 && spin >= 0) { spin = (spin + 1) & 0x3fffffff; }\n"] +
-         solution("mvp") + ["    if (spin == 12345) gl_Position = vec4(0.0);\n"])
-    expected["loop_shader"] = ([1, 1, 1, 1, 1], [])
     # Writes everywhere it can think of: the canary, another student's code, the grader, the
     # repository's tests; and deletes with a shell. All inside look_at, which stays right.
     d = make("escape")
@@ -258,7 +248,7 @@ def run(tmp):
     for name in expected:
         if f'href="{name}/report.html"' not in index:
             problems.append(f"index.html has no link to {name}'s report")
-    # a failing render test's picture reaches the report (mvp stubbed: Lab1Render.DefaultScene)
+    # a failing render test's picture reaches the report (transform stubbed: Lab1Render.TransformCameraYawPitchRoll)
     report = open(os.path.join(out, "partial", "report.html")).read()
     pics = re.findall(r'<img src="([^"]+)"', report)
     if not pics or not all(os.path.isfile(os.path.join(out, "partial", p)) for p in pics):
