@@ -299,7 +299,7 @@ std::string binary_map(const std::string& file, int salt) {
     lab::write_png(path, im);
     return path;
 }
-// A data map (specular factors: plain numbers, whatever format colour maps get), 8×8 greys.
+// A map of 8×8 greys, all levels from 0 to 255 mixed.
 std::string data_map(const std::string& file) {
     lab::Image8 im{8, 8, {}};
     for (int y = 0; y < 8; ++y)
