@@ -58,9 +58,8 @@ glm::dmat4 LightFrustum::world_to_clip(const glm::dmat4& relative) const { retur
 double LightFrustum::depth_of_texels(const Box& caster, double texels) const {
     if (!perspective) return texels * texel / (far_plane - near_plane);  // orthographic: depth is linear
     // Perspective: the stored depth's slope per unit of z (z: the distance along the face's or
-    // spot's axis; the slope is the derivative of the function cube_face_depth asks for) times a
-    // texel's width, texel · z, times `texels`; largest at the caster's nearest z (a spot's: clip w,
-    // smallest at a corner of the box).
+    // spot's axis) times a texel's width, texel · z, times `texels`; largest at the caster's nearest
+    // z (a spot's: clip w, smallest at a corner of the box).
     double z = kInf;
     if (cube) {
         const glm::dvec3 gap = glm::max(glm::max(caster.lo - origin, origin - caster.hi), glm::dvec3(0.0));
@@ -96,7 +95,7 @@ LightFrustum fit_directional(const glm::dvec3& direction, const std::vector<Box>
     for (const Box& b : casters) c.add(lab::transformed(b, view));
     for (const Box& b : receivers) r.add(lab::transformed(b, view));
     if (casters.empty()) c = r;
-    // EXERCISE directional_box: the orthographic box in light space (x, y across the beam, z towards the light): across the beam, where can a caster (box c) shadow a receiver (box r)? Along it, from which depth to which must the map hold depths? Keep a box that is empty in some axis valid. Two constants you cannot derive (the course's pictures and shadow-edge texels assume them): along the beam, the box reaches beyond the farthest caster by (kFarMargin − 1) × the casters' own depth extent (box c's size in z); and the finished box is widened by 1e-4 × the length of the receivers' bounding-box diagonal (`all`) on both sides of every axis. Read this lab's README "Two passes" and kFarMargin above; test_light_frustum.cpp says what the box must hold. Wrong: shadows cut off at an edge or missing far from the origin, or coarse blocky shadows (a box much larger than needed). Checked by LightFrustum.OffCentreDirectionalBoxHoldsItsCasters, Lab4Stress.DirectionalLightOverCastersFarFromTheOrigin.
+    // EXERCISE directional_box: the orthographic box in light space (x, y across the beam, z towards the light): across the beam, where can a caster (box c) shadow a receiver (box r)? Along it, from which depth to which must the map hold depths? Keep a box that is empty in some axis valid. Two constants you cannot derive (the instructors' pictures assume them; the tests in a copy pass without them): along the beam, the box reaches beyond the farthest caster by (kFarMargin − 1) × the casters' own depth extent (box c's size in z); and the finished box is widened by 1e-4 × the length of the receivers' bounding-box diagonal (`all`) on both sides of every axis. Read this lab's README "Two passes" and kFarMargin above; test_light_frustum.cpp says what the box must hold. Wrong: shadows cut off at an edge or missing far from the origin, or coarse blocky shadows (a box much larger than needed). Checked by LightFrustum.OffCentreDirectionalBoxHoldsItsCasters, Lab4Stress.DirectionalLightOverCastersFarFromTheOrigin.
     // STUB: glm::dvec3 lo(-1.0), hi(1.0);  // a fixed 2-unit box round the scene's centre
     // Across the beam: only where a caster can shadow a receiver (both boxes overlap); a receiver
     // outside is lit anyway (outside the map = lit). Along it: from the caster nearest the light

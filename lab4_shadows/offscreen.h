@@ -69,7 +69,8 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
 
 // A sampler for depth maps: nearest or linear, optionally comparing the lookup's reference depth
 // with the stored one (which compare op, which border colour outside the map: exercise
-// comparison_sampler in offscreen.cpp).
+// comparison_sampler in offscreen.cpp). depth_sampler_info is its create info, made without a device.
+VkSamplerCreateInfo depth_sampler_info(bool linear, bool compare);
 lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool linear, bool compare);
 
 // The texels of a `size`² target that anything inside `boxes` (world space) can cover through

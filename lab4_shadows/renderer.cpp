@@ -22,7 +22,7 @@ std::string mesh_key(const lab::ObjectDesc& object) {
 // its largest element is ±1 (only the direction matters: the shader renormalizes), which
 // keeps float magnitudes near 1 even for scales of 1e-6 or 1e6.
 void normal_matrix(const glm::mat4& model, glm::vec4 columns[3]) {
-    // EXERCISE normal_matrix: the matrix n that turns normals from model to world space, still perpendicular to the surface: why not model's own 3×3 part under a non-uniform scale? Read docs/lighting.md "The default equation" (N), GLM's glm::inverse, glm::transpose. Wrong: turned objects lit as if unturned, squashed ones on the wrong slopes. Checked by Lab2Term.TurnedAndSquashedObjects, Lab2Render.DefaultScene, Lab2Render.EveryPrimitiveAndAModelLit.
+    // EXERCISE normal_matrix: the matrix n that turns normals from model to world space, still perpendicular to the surface: why not model's own 3×3 part under a non-uniform scale? A tangent t goes through that part M; n' must stay perpendicular to M t whenever n is to t: solve n'ᵀ(M t) = 0 for the matrix taking n to n'. Read docs/lighting.md "The default equation" (N), GLM's matrix functions. Wrong: turned objects lit as if unturned, squashed ones on the wrong slopes. Checked by Lab2Term.TurnedAndSquashedObjects, Lab2Render.DefaultScene, Lab2Render.EveryPrimitiveAndAModelLit.
     // STUB: glm::dmat3 n(1.0);  // identity: the normals do not turn with the object
     glm::dmat3 n = glm::transpose(glm::inverse(glm::dmat3(glm::dmat4(model))));
     // END EXERCISE

@@ -1,10 +1,12 @@
 // test_offscreen.cpp — lab 4's offscreen.h (layered render targets) and depth_view.h (the map view) on a
 // real device, validation on: each layer of a cube target cleared to its own depth, shown by the
 // depth view, read back at the squares' centres (positions and greys worked out by hand); and the
-// part of a square target a set of boxes can cover (covered_texels).
+// part of a square target a set of boxes can cover (covered_texels); the comparison sampler's create
+// info against the reference's reading of the spec.
 #include "depth_view.h"
 #include "headless_target.h"
 #include "offscreen.h"
+#include "reference/vulkan_reference.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -94,6 +96,18 @@ TEST(Offscreen, LayeredTargetsAndTheDepthViewShowEachLayer) {
 }
 
 }  // namespace
+
+// comparison_sampler: the fields that decide what a lookup returns (compare op, address modes, border
+// colour), as the reference reads the spec and the lesson's rule; nearest and linear, as the lab makes
+// both. The render tests see the same choice only where a reference depth equals a stored one.
+TEST(ComparisonSampler, ComparesAndBordersAsTheLessonAsks) {
+    for (const bool linear : {false, true}) {
+        std::string text;
+        for (const std::string& problem : ref::comparison_sampler_problems(depth_sampler_info(linear, true)))
+            text += "\n  " + problem;
+        EXPECT_TRUE(text.empty()) << (linear ? "linear" : "nearest") << " comparison sampler:" << text;
+    }
+}
 
 // covered_texels: the texels a pass must cover (worked out by hand:
 // a 100² map, NDC x, y ∈ [−1, 1] → texel (x + 1) · 50, then a texel to spare on each side).

@@ -27,12 +27,15 @@ VkSamplerAddressMode address_mode_of(lab::SamplerDesc::Wrap w) {
 }
 
 constexpr const char* kSpec = " (the Vulkan spec, \"Samplers\", and lab::SamplerDesc in scene.h)";
+constexpr const char* kCompareSpec =
+    " (the Vulkan spec, \"Depth Compare Operation\" and \"Texel Replacement\" for the border, and lab 4's "
+    "README: when is a point lit?)";
 
 template <typename T>
-void field(std::vector<std::string>& out, const char* name, T got, T want) {
+void field(std::vector<std::string>& out, const std::string& name, T got, T want, const char* read = kSpec) {
     if (got == want) return;
     std::ostringstream line;
-    line << name << " is " << got << ", not what these settings ask for" << kSpec;
+    line << name << " is " << got << ", not what these settings ask for" << read;
     out.push_back(line.str());
 }
 
@@ -71,6 +74,24 @@ std::vector<std::string> sampler_problems(const VkSamplerCreateInfo& got, const 
             if (anisotropy > 1.0f) field(out, "maxAnisotropy", double(got.maxAnisotropy), double(anisotropy));
             break;
     }
+    return out;
+}
+
+std::vector<std::string> comparison_sampler_problems(const VkSamplerCreateInfo& got) {
+    std::vector<std::string> out;
+    field(out, "sType", int(got.sType), int(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO));
+    field(out, "compareEnable", int(got.compareEnable), int(VK_TRUE), kCompareSpec);
+    // The spec's "Depth Compare Operation" applies `D_ref OP D_tex` and returns 1.0 where it holds:
+    // lit where ref <= stored, so OP is <=, equality included (a receiver at exactly the stored depth,
+    // or at the far plane of a map cleared to 1, is lit).
+    field(out, "compareOp", int(got.compareOp), int(VK_COMPARE_OP_LESS_OR_EQUAL), kCompareSpec);
+    // Outside the map a CLAMP_TO_BORDER lookup compares against the border colour's R (a depth in
+    // [0, 1]): a stored depth of 1, the farthest, so every point there passes <= and is lit.
+    for (const char* axis : {"U", "V", "W"}) {
+        const VkSamplerAddressMode mode = axis[0] == 'U' ? got.addressModeU : axis[0] == 'V' ? got.addressModeV : got.addressModeW;
+        field(out, std::string("addressMode") + axis, int(mode), int(VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER), kCompareSpec);
+    }
+    field(out, "borderColor", int(got.borderColor), int(VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE), kCompareSpec);
     return out;
 }
 

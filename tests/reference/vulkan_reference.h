@@ -26,6 +26,11 @@ enum class SamplerFields { Filter, Wrap, Mipmaps, Anisotropy };
 std::vector<std::string> sampler_problems(const VkSamplerCreateInfo& got, const lab::SamplerDesc& desc,
                                           float anisotropy, SamplerFields which);
 
+// What is wrong in `got` for lab 4's comparison sampler (a depth map read through compareEnable):
+// one line per field, as above. The lesson's rule is lit = 1 where the lookup's reference depth is
+// no farther than the stored one, and a lookup outside the map (clamp to border) is lit.
+std::vector<std::string> comparison_sampler_problems(const VkSamplerCreateInfo& got);
+
 // The format a map is stored in: `srgb_encoded` for a colour map (its bytes sRGB-encoded, as image
 // files store them), else a data map (its bytes plain numbers): what the device must read them as.
 VkFormat map_format(bool srgb_encoded);
