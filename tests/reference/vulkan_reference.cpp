@@ -87,10 +87,10 @@ std::vector<std::string> comparison_sampler_problems(const VkSamplerCreateInfo& 
     field(out, "compareOp", int(got.compareOp), int(VK_COMPARE_OP_LESS_OR_EQUAL), kCompareSpec);
     // Outside the map a CLAMP_TO_BORDER lookup compares against the border colour's R (a depth in
     // [0, 1]): a stored depth of 1, the farthest, so every point there passes <= and is lit.
-    for (const char* axis : {"U", "V", "W"}) {
-        const VkSamplerAddressMode mode = axis[0] == 'U' ? got.addressModeU : axis[0] == 'V' ? got.addressModeV : got.addressModeW;
-        field(out, std::string("addressMode") + axis, int(mode), int(VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER), kCompareSpec);
-    }
+    const int border = int(VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
+    field(out, "addressModeU", int(got.addressModeU), border, kCompareSpec);
+    field(out, "addressModeV", int(got.addressModeV), border, kCompareSpec);
+    field(out, "addressModeW", int(got.addressModeW), border, kCompareSpec);
     field(out, "borderColor", int(got.borderColor), int(VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE), kCompareSpec);
     return out;
 }

@@ -1,5 +1,6 @@
-// vulkan_reference.h — the oracle's answers about Vulkan objects, for the tests of lab 3's device
-// code: what a sampler must hold for a material's settings, and what a map's texels read as.
+// vulkan_reference.h — the oracle's answers about Vulkan objects, for the tests of lab 3's and lab
+// 4's device code: what a sampler must hold for a material's settings or for a shadow lookup, and
+// what a map's texels read as.
 //
 // Like the rest of tests/reference/, a student copy holds only this header and a prebuilt library
 // (scripts/exercise.sh): the tests take their expected values from it, not from their own source.
