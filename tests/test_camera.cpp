@@ -1,7 +1,8 @@
 // Camera math of lab 1 against the CPU reference's camera (tests/reference/cpu_reference.h, built
 // from docs/conventions.md), degenerate inputs and the mode-switch round trip. The expected
 // matrices and axes come from the reference, not from this file: a student copy holds the
-// reference prebuilt (docs/solutions.md).
+// reference prebuilt (docs/solutions.md). The controls (Controls.*) are checked on positions and
+// distances worked out by hand for given drags and wheel steps.
 #include "camera.h"
 
 #include "reference/cpu_reference.h"
