@@ -36,7 +36,7 @@ struct GpuSpot {
     glm::vec4 direction;  // xyz: unit vector
     glm::vec4 radiance;
     glm::vec4 attenuation;
-    glm::vec4 cone;  // x: cos(outer), y: 1 / (cos(start of the ramp) − cos(outer)), 0 = hard edge
+    glm::vec4 cone;  // xy: spot_cone()
 };
 struct GpuLights {
     glm::uvec4 counts;  // x: directional, y: point, z: spot
@@ -58,9 +58,9 @@ struct GpuMaterial {
     glm::vec4 params;    // x: Ward roughness along the tangent, y: along the bitangent, z: Minnaert k
 };
 
-// The spot cone as the shader gets it: x = cos(outer), y = 1 / (cos(start of the ramp) − cos(outer)),
-// or 0 for a hard edge (how the shader turns them into a factor: exercise spot_cone). "edge" is
-// "smooth" with the ramp starting on the axis (inner = 0°). Computed in double (docs/lighting.md).
+// The spot cone as the shader reads it (spot_factor() in lighting.glsl): two numbers per light,
+// worked out once here so that each pixel pays one subtraction, one multiply and a clamp
+// (exercise spot_cone).
 glm::vec2 spot_cone(const lab::LightDesc& light, lab::LightingDesc::SpotFalloff falloff);
 
 // Everything the lighting panel can change.

@@ -7,10 +7,10 @@
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-double cos_deg(double deg) { return std::cos(deg * kPi / 180.0); }
+[[maybe_unused]] double cos_deg(double deg) { return std::cos(deg * kPi / 180.0); }
 
 // Below this width the ramp of a spot cone is a hard edge (no division by ~0).
-constexpr double kMinConeWidth = 1e-6;
+[[maybe_unused]] constexpr double kMinConeWidth = 1e-6;
 
 glm::vec3 unit_or(const glm::vec3& v, const glm::vec3& fallback) {
     const double len = glm::length(glm::dvec3(v));
@@ -19,10 +19,14 @@ glm::vec3 unit_or(const glm::vec3& v, const glm::vec3& fallback) {
 }  // namespace
 
 glm::vec2 spot_cone(const lab::LightDesc& light, lab::LightingDesc::SpotFalloff falloff) {
+    // EXERCISE spot_cone: the two numbers spot_factor() in lighting.glsl reads, so that its one subtraction, multiply and clamp per pixel give docs/lighting.md's cone: full light inside inner_deg, none outside outer_deg, a ramp linear in cos between. Which cosine is where the ramp ends, which its slope, and what does "edge" falloff make of the ramp (write its X as a ramp in cos β)? When is a ramp too narrow to divide by (kMinConeWidth), and what must y be then? Why in double? Read docs/lighting.md "Light types", "Numerical safety", spot_factor(). Wrong: a spot lighting all around, a hard-edged spot where the edge should fade, light outside the cone, or "edge" looking like "smooth". Checked by SpotFactor.LabPacksTheSameCone, Lab2Term.SpotCones, Lab2Render.SpotLights.
+    // STUB: (void)light, (void)falloff;
+    // STUB: return {-1.0f, 0.0f};  // a hard edge at cos = −1: the spot shines in every direction
     const double cos_outer = cos_deg(light.outer_deg);
     const double cos_start = falloff == lab::LightingDesc::SpotFalloff::Edge ? 1.0 : cos_deg(light.inner_deg);
     const double width = cos_start - cos_outer;
     return {float(cos_outer), width >= kMinConeWidth ? float(1.0 / width) : 0.0f};
+    // END EXERCISE
 }
 
 Lighting Lighting::from_scene(const lab::Scene& scene) {

@@ -189,11 +189,24 @@ TEST(Lab2Term, PhongHighlights) {
     expect_matches_reference(one_term(kTestScenes + "/lab2_directional.json", "term_phong_highlights", false, "phong"),
                              "term_phong_highlights");
 }
-// gouraud: the same equation per vertex. The floor is stretched along its normal to (8, 16, 8),
-// which a plane (all at y = 0) does not show: its normal keeps its direction (+Y, which
-// normal_matrix's stub gives too) but, with the normal matrix scaled so its largest element is 1
-// (docs/lighting.md "The default equation"), reaches lit.vert at length 0.5. Only a shader that
-// normalizes N lights the floor like the reference (N·L, not N·L / 2).
+// face_normal: flat shading of coarse, turned and squashed objects (a sphere and a torus of 10 × 5
+// quads), Lambert under a directional light: each triangle one normal, its own, whatever the
+// vertex normals and the normal matrix say. (The reference takes (v1 − v0) × (v2 − v0) of the hit
+// triangle in world space.)
+TEST(Lab2Term, FlatFacets) {
+    expect_matches_reference(scene_variant(kLab, one_term(kTestScenes + "/lab2_directional.json", "term_flat", true, "lambert", "flat"),
+                                           "term_flat",
+                                           [](json& scene) {
+                                               for (json& object : scene["objects"])
+                                                   if (object.contains("segments")) object["segments"] = 10, object["rings"] = 5;
+                                           }),
+                             "term_flat");
+}
+// Gouraud: the same equation per vertex (lit.vert). The floor is stretched along its normal to
+// (8, 16, 8), which a plane (all at y = 0) does not show: its normal keeps its direction (+Y) but,
+// with the normal matrix scaled so its largest element is 1 (docs/lighting.md "The default
+// equation"), reaches lit.vert at length 0.5. Only a shader that normalizes N lights the floor
+// like the reference (N·L, not N·L / 2).
 TEST(Lab2Term, GouraudShading) {
     const std::string file = one_term(kTestScenes + "/lab2_directional.json", "term_gouraud", false, "lambert", "gouraud");
     expect_matches_reference(scene_variant(kLab, file, "term_gouraud",

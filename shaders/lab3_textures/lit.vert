@@ -27,15 +27,12 @@ void main() {
     out_gouraud_color = vec3(0.0);
     out_bad = 0.0;
     if (SHADING == SHADING_GOURAUD) {
-        // EXERCISE gouraud: out_gouraud_color: the equation lit.frag evaluates per pixel, here at this vertex (world, out_world_normal). Which unit N and V does shade() expect, and if the normal is zero? Read docs/lighting.md "Shading models", "Numerical safety", lit.frag's main(). Wrong: flat unlit colours, facets too bright or dark, black or magenta corners. Checked by Lab2Term.GouraudShading, Lab2Shading.GouraudVsPhong.
-        // STUB: out_gouraud_color = materials[object.material].albedo.rgb;  // unlit
         const vec3 to_eye = frame.camera_position.xyz - world.xyz;
         // A zero vertex normal has no direction: the vertex faces the viewer.
         const vec3 V0 = safe_normalize(to_eye, vec3(0.0, 0.0, 1.0));
         const vec3 N = safe_normalize(out_world_normal, V0);
         const vec3 V = safe_normalize(to_eye, N);
         out_gouraud_color = shade(materials[object.material], world.xyz, N, V, out_world_tangent);
-        // END EXERCISE
         out_bad = lab_bad ? 1.0 : 0.0;
     }
     gl_Position = frame.projection * (frame.view * world);

@@ -115,13 +115,11 @@ float attenuation(vec3 k, float d) {
     // END EXERCISE
 }
 
-// Spot cone: cos_theta = cos of the angle between the light's axis and the ray to the point.
+// Spot cone: cos_theta = cos of the angle between the light's axis and the ray to the point;
+// cone.xy as spot_cone() in lights.cpp packs them (exercise spot_cone), y = 0 for a hard edge at x.
 float spot_factor(vec4 cone, float cos_theta) {
-    // EXERCISE spot_cone: how much of a spot's light reaches a point cos_theta off its axis: inside the inner cone, outside the outer, between? What do cone.x, cone.y hold (spot_cone() in lights.cpp), and cone.y = 0? Read docs/lighting.md "Light types", "Numerical safety". Wrong: a spot lighting all around, a hard-edged spot where the edge should fade, or light outside the cone. Checked by Lab2Term.SpotCones, Lab2Render.SpotLights.
-    // STUB: return 1.0;  // no cone: a spot light shines in every direction
-    if (cone.y <= 0.0) return cos_theta >= cone.x ? 1.0 : 0.0;  // inner == outer: a hard edge
+    if (cone.y <= 0.0) return cos_theta >= cone.x ? 1.0 : 0.0;  // no ramp to divide by: a hard edge
     return clamp((cos_theta - cone.x) * cone.y, 0.0, 1.0);
-    // END EXERCISE
 }
 
 // The unit tangent for Ward: the mesh tangent made perpendicular to N (any ⟂ vector if it is parallel).

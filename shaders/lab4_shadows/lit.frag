@@ -111,6 +111,8 @@ void main() {
     } else {
         const vec3 P = in_world_position;
         const vec3 to_eye = frame.camera_position.xyz - P;
+        // EXERCISE face_normal: N for the flat and Phong models (docs/lighting.md "Shading models"). Flat: the triangle's own normal, which no vertex carries and no input gives: what does a fragment shader know about how P changes across the triangle, and which way must the normal point (every drawn triangle is seen from its front, whatever the winding and Vulkan's downward y do to a cross product)? Phong: the interpolated normal, no longer unit, possibly zero. Degenerate cases: safe_normalize(). Read the GLSL spec's "Derivative Functions", docs/lighting.md "Numerical safety". Wrong: no facets under flat shading, black or inverted facets, black spots where the normals cancel. Checked by Lab2Term.FlatFacets, Lab2Shading.FlatVsPhong.
+        // STUB: const vec3 N = safe_normalize(in_world_normal, safe_normalize(to_eye, vec3(0.0, 0.0, 1.0)));  // no facets: every model Phong's
         // The triangle's own (geometric) normal from the screen-space derivatives of the
         // position, turned towards the eye: every drawn triangle is a front face.
         vec3 face = safe_normalize(cross(dFdx(P), dFdy(P)), safe_normalize(to_eye, vec3(0.0, 0.0, 1.0)));
@@ -119,6 +121,7 @@ void main() {
         // interpolated normal falls back to the face normal).
         // Lab 4: a translucent object's back faces are drawn too; their normal turns to the viewer.
         const vec3 N = SHADING == SHADING_FLAT ? face : (gl_FrontFacing ? 1.0 : -1.0) * safe_normalize(in_world_normal, face);
+        // END EXERCISE
         const vec3 V = safe_normalize(to_eye, N);  // the eye on the surface: V = N
         color = shade(textured(materials[object.material], in_uv, P), P, N, V, in_world_tangent);
         if (MIP_VIEW && (ALBEDO_MAP || SPECULAR_MAP || EMISSIVE_MAP))
