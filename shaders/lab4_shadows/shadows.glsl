@@ -54,7 +54,7 @@ layout(set = 0, binding = 5) uniform sampler2DShadow shadow_compare[4];
 // Point lights' cube maps, read as 2D arrays of their six faces (layer = face, see shadow_cube).
 layout(set = 0, binding = 6) uniform sampler2DArray cube_depth[4];
 layout(set = 0, binding = 7) uniform sampler2DArrayShadow cube_compare[4];
-// Translucent casters (the second lesson): their transmittance maps and tap(), one tap's light.
+// Translucent casters (the second lesson): their transmittance maps and translucent_light().
 #include "translucent_shadows.glsl"
 
 // PCF's share of one gather: the four texels it compared, c = (0,1) (1,1) (1,0) (0,0) as

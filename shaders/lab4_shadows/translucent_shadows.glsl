@@ -16,25 +16,19 @@ layout(set = 0, binding = 9) uniform sampler2DArray cube_translucency[4];  // a 
 // map: z = 1, K as it is; K from the map, translucent_shadows.cpp): a fixed tolerance in depth
 // would not do, perspective depth crowds towards 1 (1e-4 of it is metres at a far light).
 
-// One layer's share: `lit`, the light that reached the layers before, and what the face this layer
-// holds does to it (exercise translucent_tap; `tolerance`, in depth, see above).
-float tap(float lit, bool translucent, vec2 transmittance, float ref, float tolerance) {
-    // EXERCISE translucent_tap: when does the light pass through the translucent casters before reaching P, and how much of it is left (what do r and g of the transmittance map hold)? Wrong: a glass object casts no shadow, or shadows itself. Checked by Lab4Shadows.TranslucentShadowFromAFarSpot, Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply, Lab4Translucency.TranslucentCubesLitFacesDoNotShadowThemselves.
-    // STUB: return lit;  // translucent casters let all the light through
-    if (translucent && ref > transmittance.g + tolerance) lit *= transmittance.r;
+// The light the translucent casters let through to P at depth `ref`: `at` = (s, t, face) in the
+// map, `tolerance` in depth (see above). `layers` (K) is a specialization constant: without
+// translucent casters (0) there is no lookup at all, and the loop over the layers unrolls. (A bound
+// read from a uniform made lavapipe, Mesa 22.3, grow by megabytes every frame.)
+float translucent_light(int layers, sampler2DArray map, vec3 at, float ref, float tolerance) {
+    // EXERCISE translucent_tap: read P's texel in each of the face's K layers (which array layer is layer k of face at.z?) and decide, layer by layer, what the face it holds does to the light on its way to P: which faces dim it, by how much, and which must not — P's own face among them, at P's depth give or take the rounding that `tolerance` covers? What does a layer hold where no face is? Read the comment on `translucency` above and the lab 4 README, "Translucent objects". Wrong: a glass object casts no shadow, shadows itself, or the floor under two panes gets one pane's shadow. Checked by Lab4Shadows.TranslucentShadowFromAFarSpot, Lab4Shadows.TranslucentShadowInteriorWithin2Of255, Lab4Shadows.TwoOverlappingTranslucentObjectsMultiply, Lab4Translucency.TranslucentCubesLitFacesDoNotShadowThemselves.
+    // STUB: return 1.0;  // translucent casters let all the light through
+    float lit = 1.0;
+    for (int k = 0; k < layers; ++k) {
+        // r = the face's 1 − opacity, g = its depth (r = g = 1: no face).
+        const vec2 face = texture(map, vec3(at.xy, at.z * float(layers) + float(k))).rg;
+        if (ref > face.g + tolerance) lit *= face.r;  // the face lies in front of P, P's own face not
+    }
     return lit;
     // END EXERCISE
-}
-
-// The light the translucent casters let through to P at depth `ref`: `at` = (s, t, face) in the
-// map, every layer of that face in turn. Only faces in front of P count — never P's own face,
-// never a face behind it — so a glass receiver under a glass caster gets the caster's 1 − α, and
-// the floor under both the product. `layers` (K) is a specialization constant: without
-// translucent casters (0) there is no lookup at all, and the loop is unrolled. (A bound read from
-// a uniform made lavapipe, Mesa 22.3, grow by megabytes every frame.)
-float translucent_light(int layers, sampler2DArray map, vec3 at, float ref, float tolerance) {
-    float lit = 1.0;
-    for (int k = 0; k < layers; ++k)
-        lit = tap(lit, true, texture(map, vec3(at.xy, at.z * float(layers) + float(k))).rg, ref, tolerance);
-    return lit;
 }
