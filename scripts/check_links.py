@@ -11,7 +11,9 @@ a #anchor (alone, or after a .md file) must be the slug of one of that file's he
 computed as the course site (markdown-it-anchor with github-slugger) and GitHub compute it:
 the heading's text without its markup, lower-case, punctuation and symbols dropped, spaces
 turned into -, and -1, -2, … appended to repeats.
-Prints one line per broken link (file:line: the target and why) and exits 1 if there is one,
+Every row of a table has as many cells as its header (GFM splits a row at each | not written
+\\|, inside code spans too, so `|v|` in a cell breaks the table on the site and on GitHub).
+Prints one line per broken link or table row (file:line: the target and why) and exits 1 if there is one,
 0 if none; 2 on bad input.
 
 --unlink-missing (exercise.sh runs it on the copy it writes): each link or picture whose file is
@@ -131,16 +133,30 @@ def links(line):
     return [(m, m.group(1)) for m in LINK.finditer(blanked)]
 
 
+def table_cells(line):
+    """The cells of a table row: GFM splits at every | not escaped as \\|, in code spans too."""
+    return len(re.split(r"(?<!\\)\|", line.strip().strip("|"))) if line.strip() != "|" else 0
+
+
 def check(top):
     problems = 0
     for md in markdown_files(top):
         shown = os.path.relpath(md, top)
+        header = None  # the cell count of the table being read
         for number, line in lines_outside_code(md):
             for _, target in links(line):
                 why = broken(md, target, top)
                 if why:
                     print(f"{shown}:{number}: broken link ({target}): {why}")
                     problems += 1
+            if not line.lstrip().startswith("|"):
+                header = None
+            elif header is None:
+                header = table_cells(line)
+            elif table_cells(line) != header:
+                print(f"{shown}:{number}: a table row of {table_cells(line)} cells under a header of {header} "
+                      "(a | inside a code span splits the cell: write \\| or ‖)")
+                problems += 1
     return problems
 
 
@@ -219,9 +235,9 @@ def main(argv):
     count = sum(1 for _ in markdown_files(top))
     problems = check(top)
     if problems:
-        print(f"check_links: {top}: {problems} broken link(s) in {count} Markdown files")
+        print(f"check_links: {top}: {problems} broken link(s) or table row(s) in {count} Markdown files")
         return 1
-    print(f"check_links: {top}: every relative link and anchor of {count} Markdown files resolves")
+    print(f"check_links: {top}: every relative link and anchor of {count} Markdown files resolves, every table row fits its header")
     return 0
 
 

@@ -1,19 +1,32 @@
 #!/usr/bin/env python3
 """What the Markdown tools count as prose: scripts/check_links.py's outside_fences(), which
 comment_answers.py also reads Markdown by (a fence closes only on its own character, at least as
-long; CommonMark). Expected lines by hand."""
+long; CommonMark), and how check_links.py counts a table row's cells (GFM). Expected values by
+hand."""
 import os
 import sys
 import tempfile
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
-from check_links import outside_fences  # noqa: E402
+from check_links import outside_fences, table_cells  # noqa: E402
 import comment_answers  # noqa: E402
 
 
 def prose(text):
     return [line for _, line in outside_fences(text.split("\n"))]
+
+
+class TableCells(unittest.TestCase):
+    def test_a_row_and_its_delimiter(self):
+        self.assertEqual(table_cells("| a | `b` | c |"), 3)
+        self.assertEqual(table_cells("|---|---|---|"), 3)
+
+    def test_a_pipe_in_a_code_span_splits_the_cell(self):
+        self.assertEqual(table_cells("| point | `d = |position - P|` |"), 4)
+
+    def test_an_escaped_pipe_does_not(self):
+        self.assertEqual(table_cells("| point | `d = \\|position - P\\|` |"), 2)
 
 
 class OutsideFences(unittest.TestCase):
