@@ -19,7 +19,9 @@
 //     [ exercise ] and your `texel_format`, which it needs: lab3_textures/texture.cpp:28
 // (the rows list what each exercise's stub fails: a wrong answer, such as a swapped format or a
 // missing barrier, can fail tests its stub does not, so a render test cannot tell which exercise is
-// wrong; the exercises' own unit tests can, and the message sends the student there first). A
+// wrong; the exercises' own unit tests can, and the message sends the student there first; the
+// exercises to compare come the most specific first, the one the fewest tests need). One of an
+// exercise's own tests that only it fails says so instead ("this test checks `X` alone"). A
 // failing test of no exercise, in a student copy, prints the own tests' line alone.
 //
 // "Done" does not depend on the marker line: an exercise is unfinished while its code (between
@@ -315,11 +317,17 @@ void print_hint(const std::string& full, const std::string& pictures) {
             if (is_graded(g) && g != &m)
                 std::printf("[ exercise ] it also grades `%s` (%s:%d): finish `%s` first\n", g->name.c_str(),
                             g->file.c_str(), g->line, m.name.c_str());
+    } else if (order.size() == 1 && is_graded(order.front())) {
+        // One of the exercise's own tests (its "Checked by", and no other exercise's stub fails
+        // it): the test's own failure above is about that exercise alone.
+        const Marker& m = *order.front();
+        std::printf("[ exercise ] this test checks `%s` alone, and `%s` is no longer the stub: what the test\n"
+                    "             printed above is what is wrong with it: %s:%d\n             Hint: %s\n",
+                    m.name.c_str(), m.name.c_str(), m.file.c_str(), m.line, m.hint.c_str());
     } else {
         // Done is not right, and the test cannot tell which exercise is wrong: a wrong answer can fail
         // tests its stub does not (a swapped format, a missing barrier). The exercises' own tests
-        // can: the message sends the student there first, then names the ones this test needs,
-        // those it grades first.
+        // can: the message sends the student there first, then names the ones this test needs.
         std::string names;
         for (const Marker* m : order) names += (names.empty() ? "" : ", ") + m->name;
         std::printf("[ exercise ] %s (%s), yet it fails: %s, or another exercise of the lab, is wrong in a way its\n"
@@ -333,21 +341,36 @@ void print_hint(const std::string& full, const std::string& pictures) {
         if (!command.empty())
             std::printf("[ exercise ] the exercises' own tests name the one that is wrong; run them first:\n"
                         "             %s\n", command.c_str());
+        // Then the exercises to compare, the most specific to this test first: the one the fewest
+        // tests need (its rows in graded_exercises.txt and its "Checked by" patterns). An exercise
+        // every render needs (lab 4's pass_dependencies, whose mistakes the validation layer
+        // reports by name anyway) says least about a wrong picture, so it comes last.
+        const auto tests_needing = [&](const std::string& name) {
+            std::vector<std::string> patterns;
+            for (const auto& [pattern, names] : table)
+                if (std::find(names.begin(), names.end(), name) != names.end()) patterns.push_back(pattern);
+            for (const Marker& m : markers)
+                if (m.name == name)
+                    for (const std::string& t : m.tests)
+                        if (std::find(patterns.begin(), patterns.end(), t) == patterns.end()) patterns.push_back(t);
+            return patterns.size();
+        };
+        std::vector<const Marker*> compare = order;
+        std::stable_sort(compare.begin(), compare.end(), [&](const Marker* x, const Marker* y) {
+            return tests_needing(x->name) < tests_needing(y->name);
+        });
         bool compared = false;  // the first line says "if they all pass, compare", the rest "and"
-        for (const Marker* g : order)
-            if (is_graded(g)) {
+        for (const Marker* g : compare) {
+            if (is_graded(g))
                 std::printf("[ exercise ] %s `%s` with its hint: %s:%d\n             Hint: %s\n",
                             compared ? "and compare your" : "if they all pass, compare your", g->name.c_str(),
                             g->file.c_str(), g->line, g->hint.c_str());
-                compared = true;
-            }
-        for (const Marker* g : order)
-            if (!is_graded(g)) {
+            else
                 std::printf("[ exercise ] %s `%s`, which it needs: %s:%d\n",
                             compared ? "and your" : "if they all pass, compare your", g->name.c_str(), g->file.c_str(),
                             g->line);
-                compared = true;
-            }
+            compared = true;
+        }
     }
     // tests/reference/image_compare.h writes them left to right in this order.
     if (!pictures.empty()) std::printf("[ exercise ] pictures (expected | actual | difference): %s/\n", pictures.c_str());
