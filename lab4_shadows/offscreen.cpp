@@ -72,11 +72,10 @@ VkSamplerCreateInfo depth_sampler_info(bool linear, bool compare) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = info.minFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    // Outside the map a lookup reads the border colour.
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
-    // EXERCISE comparison_sampler: with `compare`, the sampler itself compares the lookup's reference depth (the point's depth from the light) with the stored one and returns 1 (lit) or 0 per texel, before filtering. Which compare op says "lit" for a point no farther than the nearest caster, and what should a lookup outside the map return (clamp-to-border: which border colour)? Read VkSamplerCreateInfo (compareEnable, compareOp) and "Depth Compare Operation" in the spec. Wrong: everything is lit or shadows are inverted; a dark line where the map ends. Checked by ComparisonSampler.*, Lab4Shadows.BilinearComparisonMatchesTheReference, Lab4Shadows.DirectionalLightBilinearComparison, Lab4Shadows.ReceiverAtTheShadowMapsEdgeIsLit.
+    // EXERCISE comparison_sampler: with `compare`, the sampler itself compares the lookup's reference depth (the point's depth from the light) with the stored one and returns 1 (lit) or 0 per texel, before filtering. Which compare op says "lit" for a point no farther than the nearest caster (in which order does the spec put the two operands)? A lookup outside the map (a receiver beyond what the map covers, a PCF tap past its edge) must read "lit": which address mode gives it, in all three coordinates, and which border colour, compared how? Read VkSamplerCreateInfo (addressMode*, borderColor, compareEnable, compareOp), "Wrapping Operation" and "Depth Compare Operation" in the spec. Wrong: everything is lit or shadows are inverted; shadows repeated or smeared beyond the map's edge, or a dark line where it ends. Checked by ComparisonSampler.*, Lab4Shadows.BilinearComparisonMatchesTheReference, Lab4Shadows.DirectionalLightBilinearComparison, Lab4Shadows.ReceiverAtTheShadowMapsEdgeIsLit.
     // STUB: info.compareEnable = compare;
-    // STUB: info.compareOp = VK_COMPARE_OP_ALWAYS;  // every texel "lit"; border: transparent black
+    // STUB: info.compareOp = VK_COMPARE_OP_ALWAYS;  // every texel "lit"; outside the map: repeated
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
     info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     info.compareEnable = compare;
     info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // 1 where reference ≤ stored depth: lit

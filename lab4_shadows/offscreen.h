@@ -68,7 +68,7 @@ void begin_offscreen_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer 
                           float depth = 1.0f, VkRect2D area = {}, uint32_t used = 0);
 
 // A sampler for depth maps: nearest or linear, optionally comparing the lookup's reference depth
-// with the stored one (which compare op, which border colour outside the map: exercise
+// with the stored one (which compare op, and what a lookup outside the map reads: exercise
 // comparison_sampler in offscreen.cpp). depth_sampler_info is its create info, made without a device.
 VkSamplerCreateInfo depth_sampler_info(bool linear, bool compare);
 lab::Handle<VkSampler> make_depth_sampler(const lab::VulkanContext& vk, bool linear, bool compare);
