@@ -135,7 +135,7 @@ def links(line):
 
 def table_cells(line):
     """The cells of a table row: GFM splits at every | not escaped as \\|, in code spans too."""
-    return len(re.split(r"(?<!\\)\|", line.strip().strip("|"))) if line.strip() != "|" else 0
+    return len(re.split(r"(?<!\\)\|", line.strip().strip("|")))
 
 
 def check(top):

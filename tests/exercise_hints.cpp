@@ -39,6 +39,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -345,19 +346,13 @@ void print_hint(const std::string& full, const std::string& pictures) {
         // tests need (its rows in graded_exercises.txt and its "Checked by" patterns). An exercise
         // every render needs (lab 4's pass_dependencies, whose mistakes the validation layer
         // reports by name anyway) says least about a wrong picture, so it comes last.
-        const auto tests_needing = [&](const std::string& name) {
-            std::vector<std::string> patterns;
-            for (const auto& [pattern, names] : table)
-                if (std::find(names.begin(), names.end(), name) != names.end()) patterns.push_back(pattern);
-            for (const Marker& m : markers)
-                if (m.name == name)
-                    for (const std::string& t : m.tests)
-                        if (std::find(patterns.begin(), patterns.end(), t) == patterns.end()) patterns.push_back(t);
-            return patterns.size();
-        };
+        std::map<std::string, std::set<std::string>> tests_needing;  // exercise → the test patterns
+        for (const auto& [pattern, names] : table)
+            for (const std::string& n : names) tests_needing[n].insert(pattern);
+        for (const Marker& m : markers) tests_needing[m.name].insert(m.tests.begin(), m.tests.end());
         std::vector<const Marker*> compare = order;
         std::stable_sort(compare.begin(), compare.end(), [&](const Marker* x, const Marker* y) {
-            return tests_needing(x->name) < tests_needing(y->name);
+            return tests_needing[x->name].size() < tests_needing[y->name].size();
         });
         bool compared = false;  // the first line says "if they all pass, compare", the rest "and"
         for (const Marker* g : compare) {

@@ -25,9 +25,9 @@ float translucent_light(int layers, sampler2DArray map, vec3 at, float ref, floa
     // STUB: return 1.0;  // translucent casters let all the light through
     float lit = 1.0;
     for (int k = 0; k < layers; ++k) {
-        // r = the face's 1 − opacity, g = its depth (r = g = 1: no face).
-        const vec2 face = texture(map, vec3(at.xy, at.z * float(layers) + float(k))).rg;
-        if (ref > face.g + tolerance) lit *= face.r;  // the face lies in front of P, P's own face not
+        // r = the layer's face's 1 − opacity, g = its depth (r = g = 1: no face).
+        const vec2 layer = texture(map, vec3(at.xy, at.z * float(layers) + float(k))).rg;
+        if (ref > layer.g + tolerance) lit *= layer.r;  // its face lies in front of P, P's own face not
     }
     return lit;
     // END EXERCISE
