@@ -35,6 +35,7 @@ private:
     struct DrawItem {
         const lab::GpuMesh* mesh;
         ObjectConstants constants;
+        lab::Box box;  // world-space bounds: the draw order
     };
 
     const lab::VulkanContext& vk_;

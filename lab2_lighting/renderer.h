@@ -47,6 +47,7 @@ private:
         const lab::GpuMesh* mesh;
         ObjectConstants constants;
         LitConstants lit{};
+        lab::Box box;  // world-space bounds: the draw order
     };
 
     void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);

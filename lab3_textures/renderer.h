@@ -56,6 +56,7 @@ private:
         const lab::GpuMesh* mesh;
         ObjectConstants constants;
         LitConstants lit{};
+        lab::Box box;  // world-space bounds: the draw order
     };
 
     enum class Objects { All, TexturedOnly };  // TexturedOnly: the others were drawn ambient-only

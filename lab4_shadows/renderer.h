@@ -75,7 +75,7 @@ private:
         const lab::GpuMesh* mesh;
         ObjectConstants constants;
         LitConstants lit{};
-        Box box;  // lab 4: world-space bounds, where on screen a translucent object may be
+        lab::Box box;  // world-space bounds: the draw order; lab 4: where on screen a translucent object may be
     };
     // Lab 4: opaque objects first, then the translucent ones' layers (both faces, into the lists).
     enum class Pass { Opaque, Layers };

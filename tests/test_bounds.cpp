@@ -1,5 +1,5 @@
-// test_bounds.cpp — common/content/bounds.h: boxes around meshes, moved by transforms, grown, against a
-// cone; every expected value worked out by hand.
+// test_bounds.cpp — common/content/bounds.h: boxes around meshes, moved by transforms, grown, how
+// far they reach from the eye, against a cone; every expected value worked out by hand.
 #include "bounds.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -55,6 +55,25 @@ TEST(Bounds, TransformedBoxHoldsTheMovedCorners) {
     const lab::Box square{glm::dvec3(-1, -1, 0), glm::dvec3(1, 1, 0)};
     const glm::dmat4 q = glm::rotate(glm::dmat4(1.0), glm::radians(45.0), glm::dvec3(0, 0, 1));
     expect_box(lab::transformed(square, q), {-std::sqrt(2.0), -std::sqrt(2.0), 0}, {std::sqrt(2.0), std::sqrt(2.0), 0}, 1e-12);
+}
+
+TEST(Bounds, FarDepthIsTheFarthestCornerAlongTheViewDirection) {
+    // Looking down −z from (0, 0, 5): view-space depth is 5 − z, so the box z ∈ [−1, 1] reaches 6.
+    const glm::dmat4 ahead = glm::lookAt(glm::dvec3(0, 0, 5), glm::dvec3(0), glm::dvec3(0, 1, 0));
+    EXPECT_NEAR(lab::far_depth(lab::Box{glm::dvec3(-1), glm::dvec3(1)}, ahead), 6.0, 1e-12);
+    // A box behind the eye reaches no depth in front of it: negative.
+    EXPECT_NEAR(lab::far_depth(lab::Box{glm::dvec3(-1, -1, 7), glm::dvec3(1, 1, 9)}, ahead), -2.0, 1e-12);
+    // From (0, 2, 5) towards the origin, d = (0, −2, −5)/√29: a depth is (corner − eye)·d. The unit
+    // cube's farthest corner (·, −0.5, −0.5) is at (2·2.5 + 5·5.5)/√29 = 32.5/√29; a 12 × 12 floor
+    // at y = 0 reaches (·, 0, −6), at (2·2 + 5·11)/√29 = 59/√29. So the floor, which holds the
+    // cube's footprint and more, is drawn after it.
+    const glm::dmat4 above = glm::lookAt(glm::dvec3(0, 2, 5), glm::dvec3(0), glm::dvec3(0, 1, 0));
+    const lab::Box cube{glm::dvec3(-0.5), glm::dvec3(0.5)};
+    const lab::Box floor{glm::dvec3(-6, 0, -6), glm::dvec3(6, 0, 6)};
+    EXPECT_NEAR(lab::far_depth(cube, above), 32.5 / std::sqrt(29.0), 1e-12);
+    EXPECT_NEAR(lab::far_depth(floor, above), 59.0 / std::sqrt(29.0), 1e-12);
+    // The eye inside a room: its far wall still counts, 5 + 10 = 15 away.
+    EXPECT_NEAR(lab::far_depth(lab::Box{glm::dvec3(-10), glm::dvec3(10)}, ahead), 15.0, 1e-12);
 }
 
 TEST(Bounds, ConeTouchesBoxesWithinItsAngle) {

@@ -49,4 +49,8 @@ Box transformed(const Box& box, const glm::dmat4& m) {
     return out;
 }
 
+double far_depth(const Box& world_box, const glm::dmat4& view) {
+    return -transformed(world_box, view).lo.z;  // the corner with the most negative view-space z
+}
+
 }  // namespace lab

@@ -1,6 +1,7 @@
 // bounds.h — axis-aligned bounding boxes in double precision: around a mesh, moved by a
-// transform, grown to hold more, against a cone (lab 4 fits its shadow maps to the objects'
-// boxes and skips the objects outside a spot light's cone).
+// transform, grown to hold more, how far one reaches from the eye (every lab draws the nearest
+// objects first), against a cone (lab 4 fits its shadow maps to the objects' boxes and skips the
+// objects outside a spot light's cone).
 #pragma once
 
 #include "mesh.h"
@@ -23,6 +24,11 @@ struct Box {
 Box mesh_bounds(const Mesh& mesh);
 // The box around `box`'s eight corners moved by `m` (an affine transform, e.g. a model or view matrix).
 Box transformed(const Box& box, const glm::dmat4& m);
+
+// How far in front of the camera a world-space box reaches: the largest view-space depth (−z, the
+// camera looks down −z) of its eight corners. Its order is a draw order: nearest first, and what
+// reaches far back (a floor, the walls of a room) last.
+double far_depth(const Box& world_box, const glm::dmat4& view);
 
 // Can a point of `box` lie inside the cone from `apex` along the unit vector `axis` with the given
 // half-angle? Tested with the box's bounding sphere: false is certain, true may not be. A
