@@ -105,7 +105,8 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     // fragment that a later object covers was shaded for nothing. Drawn near to far, a hidden
     // fragment fails the depth test before its shader runs (early fragment tests), so a pixel is
     // shaded about once. The key is where each object reaches farthest from the eye, so a floor
-    // under everything is drawn last. (Only the speed changes, not the picture.)
+    // under everything is drawn last. (The order decides a pixel only where two surfaces tie in
+    // depth: the first drawn keeps it.)
     const glm::dmat4 world_to_view(view);
     std::stable_sort(items_.begin(), items_.end(), [&](const DrawItem& a, const DrawItem& b) {
         return lab::far_depth(a.box, world_to_view) < lab::far_depth(b.box, world_to_view);
