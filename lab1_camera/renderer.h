@@ -36,6 +36,7 @@ private:
         const lab::GpuMesh* mesh;
         ObjectConstants constants;
         lab::Box box;  // world-space bounds: the draw order
+        double far_depth = 0.0;  // this frame's sort key (draw())
     };
 
     const lab::VulkanContext& vk_;

@@ -108,9 +108,9 @@ void Renderer::draw(const lab::Frame& frame, const glm::mat4& view, const glm::m
     // under everything is drawn last. (The order decides a pixel only where two surfaces tie in
     // depth: the first drawn keeps it.)
     const glm::dmat4 world_to_view(view);
-    std::stable_sort(items_.begin(), items_.end(), [&](const DrawItem& a, const DrawItem& b) {
-        return lab::far_depth(a.box, world_to_view) < lab::far_depth(b.box, world_to_view);
-    });
+    for (DrawItem& item : items_) item.far_depth = lab::far_depth(item.box, world_to_view);  // once per object
+    std::stable_sort(items_.begin(), items_.end(),
+                     [](const DrawItem& a, const DrawItem& b) { return a.far_depth < b.far_depth; });
 
     VkCommandBuffer cmd = frame.cmd;
     if (lighting.lights.empty()) {

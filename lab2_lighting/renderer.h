@@ -48,6 +48,7 @@ private:
         ObjectConstants constants;
         LitConstants lit{};
         lab::Box box;  // world-space bounds: the draw order
+        double far_depth = 0.0;  // this frame's sort key (draw())
     };
 
     void draw_lit(VkCommandBuffer cmd, uint32_t slot, const Lighting& lighting);

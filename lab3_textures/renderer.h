@@ -57,6 +57,7 @@ private:
         ObjectConstants constants;
         LitConstants lit{};
         lab::Box box;  // world-space bounds: the draw order
+        double far_depth = 0.0;  // this frame's sort key (draw())
     };
 
     enum class Objects { All, TexturedOnly };  // TexturedOnly: the others were drawn ambient-only

@@ -76,6 +76,7 @@ private:
         ObjectConstants constants;
         LitConstants lit{};
         lab::Box box;  // world-space bounds: the draw order; lab 4: where on screen a translucent object may be
+        double far_depth = 0.0;  // this frame's sort key (draw())
     };
     // Lab 4: opaque objects first, then the translucent ones' layers (both faces, into the lists).
     enum class Pass { Opaque, Layers };
