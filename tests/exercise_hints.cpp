@@ -28,6 +28,8 @@
 // the marker and END EXERCISE, without whitespace and // comments) is still the stub. The stub's
 // text comes from the complete lab's "// STUB:" lines, or in a student copy from the
 // .exercise-stubs file that scripts/exercise.sh writes there.
+#include "probe.h"
+
 #include <gtest/gtest.h>
 
 #include <fnmatch.h>
@@ -388,6 +390,10 @@ std::string pictures_of(const ::testing::TestResult& result) {
 }
 
 class ExerciseHints : public ::testing::EmptyTestEventListener {
+    // The class grader's probe and judge (probe.h) keep one record per test.
+    void OnTestStart(const ::testing::TestInfo& info) override {
+        lab_probe::begin_test(std::string(info.test_suite_name()) + "." + info.name());
+    }
     void OnTestEnd(const ::testing::TestInfo& info) override {
         if (!info.result()->Failed()) return;
         print_hint(std::string(info.test_suite_name()) + "." + info.name(), pictures_of(*info.result()));

@@ -1,7 +1,9 @@
 // test_light_frustum.cpp — lab 4's light frusta (lab4_shadows/light_frustum.cpp), by hand: where
 // the casters land in each map, which planes the depth gets, which objects count as casters.
-// Each case is one a centred, modest scene hides (issue: "Shadows that hold on every scene").
+// Each case is one a centred, modest scene hides. Each fitted frustum is the lab's value (LAB_PROBE,
+// probe.h): the class grader judges it in a process that runs no student code.
 #include "light_frustum.h"
+#include "probe.h"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +33,7 @@ void expect_inside(const LightFrustum& f, const Box& b, const char* what) {
 TEST(LightFrustum, OffCentreDirectionalBoxHoldsItsCasters) {
     const Box caster = box({300, 40, -120}, {302, 43, -118});
     const Box floor = box({280, 39, -140}, {320, 39, -100});
-    const LightFrustum f = fit_directional({-0.3, -1.0, 0.2}, {caster}, {caster, floor});
+    const LightFrustum f = LAB_PROBE(fit_directional({-0.3, -1.0, 0.2}, {caster}, {caster, floor}));
     expect_inside(f, caster, "caster");
     // The caster's top is nearer to the light (smaller depth) than its bottom.
     EXPECT_LT(in_map(f, {301, 43, -119}).z, in_map(f, {301, 40, -119}).z);
@@ -47,7 +49,7 @@ TEST(LightFrustum, OffCentreDirectionalBoxHoldsItsCasters) {
 // sees it) has a smaller framebuffer y (Vulkan's y points down), as the camera does.
 TEST(LightFrustum, TheWholeYRowFlips) {
     const Box caster = box({10, 0, 10}, {12, 2, 12});
-    const LightFrustum f = fit_directional({0, 0, -1}, {caster}, {caster});  // looking along −z: +y is up
+    const LightFrustum f = LAB_PROBE(fit_directional({0, 0, -1}, {caster}, {caster}));  // looking along −z: +y is up
     EXPECT_LT(in_map(f, {11, 1.9, 11}).y, in_map(f, {11, 0.1, 11}).y);
     expect_inside(f, caster, "caster");
 }
@@ -62,12 +64,12 @@ TEST(LightFrustum, CasterBesideTheLightOverAHugeFloor) {
     const Box caster = box({-0.2, 0.8, -0.2}, {0.2, 1.2, 0.2});
     EXPECT_FALSE(can_shadow_from(floor, caster, light));
     EXPECT_TRUE(can_shadow_from(caster, floor, light));
-    const LightFrustum f = fit_point(light, {caster});
+    const LightFrustum f = LAB_PROBE(fit_point(light, {caster}));
     EXPECT_LE(f.near_plane, 0.8);   // the caster's nearest depth in the map (0.8)
     EXPECT_GE(f.far_plane, 1.2);    // its farthest
     EXPECT_LE(f.far_plane, 1.2 * 1.5 + 1e-12);
     // A spot pointing down the same way: the same caster is inside its depth range.
-    const LightFrustum s = fit_spot(light, {0, -1, 0}, 40, {caster});
+    const LightFrustum s = LAB_PROBE(fit_spot(light, {0, -1, 0}, 40, {caster}));
     expect_inside(s, box({-0.1, 0.8, -0.1}, {0.1, 1.2, 0.1}), "caster under the spot");
 }
 
@@ -97,7 +99,7 @@ TEST(LightFrustum, WideSpotsUseCubeMaps) {
     point.type = lab::LightDesc::Type::Point;
     EXPECT_TRUE(uses_cube_map(point));
     const Box caster = box({-0.1, -2.1, -0.1}, {0.1, -1.9, 0.1});
-    const LightFrustum f = fit_spot({0, 0, 0}, {0, -1, 0}, 60.0, {caster});
+    const LightFrustum f = LAB_PROBE(fit_spot({0, 0, 0}, {0, -1, 0}, 60.0, {caster}));
     // A point 59.5° off the axis, 2 units down: inside the map.
     const double a = glm::radians(59.5);
     const glm::dvec3 q = in_map(f, {2.0 * std::tan(a), -2.0, 0.0});
@@ -115,18 +117,18 @@ TEST(LightFrustum, DepthOfTexelsIsTheDepthStepAtTheCastersNearestPoint) {
     };
     // Spot straight down from (0, 5, 0): the caster's nearest point 2.9 along the axis.
     const Box slab = box({-0.5, 1.9, -0.5}, {0.5, 2.1, 0.5});
-    const LightFrustum spot = fit_spot({0, 5, 0}, {0, -1, 0}, 40.0, {slab});
+    const LightFrustum spot = LAB_PROBE(fit_spot({0, 5, 0}, {0, -1, 0}, 40.0, {slab}));
     const double step = texels * spot.texel * 2.9;
     const glm::dmat4 s = spot.world_to_clip(spot.view_projection);
     EXPECT_NEAR(spot.depth_of_texels(slab, texels), depth(s, {0, 5 - 2.9 - step, 0}) - depth(s, {0, 5 - 2.9, 0}), 1e-3 * spot.depth_of_texels(slab, texels));
     // Point light at the origin, the caster 4 … 5 along +X: face 0, depth along x from 4.
     const Box side = box({4, -1, -1}, {5, 1, 1});
-    const LightFrustum point = fit_point({0, 0, 0}, {side});
+    const LightFrustum point = LAB_PROBE(fit_point({0, 0, 0}, {side}));
     const glm::dmat4 x = point.world_to_clip(point.faces[0]);
     EXPECT_NEAR(point.depth_of_texels(side, texels), depth(x, {4 + texels * point.texel * 4, 0, 0}) - depth(x, {4, 0, 0}),
                 1e-3 * point.depth_of_texels(side, texels));
     // Directional down −Y: depth is linear, one step anywhere.
-    const LightFrustum sun = fit_directional({0, -1, 0}, {slab}, {slab, box({-5, -0.1, -5}, {5, 0, 5})});
+    const LightFrustum sun = LAB_PROBE(fit_directional({0, -1, 0}, {slab}, {slab, box({-5, -0.1, -5}, {5, 0, 5})}));
     const glm::dmat4 d = sun.world_to_clip(sun.view_projection);
     EXPECT_NEAR(sun.depth_of_texels(slab, texels), depth(d, {0, 1.0 - texels * sun.texel, 0}) - depth(d, {0, 1.0, 0}),
                 1e-6);

@@ -4,6 +4,7 @@
 #include "reference/cpu_lighting.h"
 
 #include "lights.h"
+#include "probe.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +25,7 @@ TEST(SpotFactor, LabPacksTheSameCone) {
             spot.type = lab::LightDesc::Type::Spot;
             spot.inner_deg = inner;
             spot.outer_deg = outer;
-            const glm::vec2 cone = spot_cone(spot, falloff);
+            const glm::vec2 cone = LAB_PROBE(spot_cone(spot, falloff));  // probe.h: what the lab computed
             for (double angle = 0.0; angle <= 95.0; angle += 0.7) {
                 const double c = cos_deg(angle);
                 const double gpu = ref::packed_spot_factor(glm::dvec2(cone), c);

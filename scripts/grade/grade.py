@@ -17,6 +17,15 @@ How a grade is made:
     (make, object reuse); only the tests that check e run (its "Checked by" list). One more run
     with all the student's regions is "as handed in". Identical variants (a region equal to the
     solution, two students with the same stub) are built and run once.
+  * No verdict comes from a process that runs the student's code (tests/probe.h). Each test runs
+    twice: the probe, in the sandbox with the variant's build, records every value the lab's code
+    computes for it (LAB_PROBE=record); then the judge, the same test built from the handed-out copy
+    (every exercise its stub: no student code, no solution), reads those values back instead of
+    computing them (LAB_PROBE=replay) and its own checks give the verdict. What the probe prints,
+    and how it exits, decide nothing but a crash or a hang.
+  * A region that steps outside its exercise (region_check.py: unbalanced braces, preprocessor
+    lines, output, process, file or dynamic-loading calls, inline assembly, builtins, the test side)
+    gets 0 and a note that says why.
   * Every build and test runs in sandbox() below.
 """
 import argparse
@@ -42,9 +51,13 @@ import threading
 import time
 import zipfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import region_check  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 WORK = "/grade/work"   # where a copy is seen inside the sandbox (its build has this path baked in)
 OUT = "/grade/out"     # the tests' output folder inside the sandbox (LAB_TEST_OUTPUT)
+PROBE = "/grade/probe" # the judge's read-only view of the probe's records (tests/probe.h)
 # As root, each job's sandbox runs as a user of its own, SANDBOX_UID + the job's number (no account
 # needs to exist for it): RLIMIT_NPROC counts the processes and threads of a user, so a fork bomb in
 # one job exhausts its own user's count, never that of a job running beside it; and no job can
@@ -55,7 +68,12 @@ EXT_ARCHIVE = (".tar.gz", ".tgz", ".zip")
 MAX_EXTRACT_BYTES = 512 << 20
 MAX_EXTRACT_FILES = 20000
 MAX_REGION_BYTES = 256 << 10
-MAX_TEST_OUTPUT = 64 << 10
+STUDENTS = "students"          # each student's report is in OUT/students/NAME/ (any name is safe there)
+MAX_TEST_OUTPUT = 64 << 10     # what a report keeps of one test's output
+MAX_PROCESS_OUTPUT = 64 << 20  # what the grader reads of one test program's output before killing it
+MAX_LINE = 64 << 10            # a longer line is read in pieces
+SANDBOX_TMP = 256 << 20        # the sandbox's /tmp (memory)
+SANDBOX_NPROC = 512            # processes and threads of one job
 
 
 def die(msg, code=2):
@@ -77,29 +95,32 @@ def log(msg):
 #     builds and /grade/out (the tests' pictures) while its tests run. The instructors'
 #     repository, the submissions, the cache and the output folder are not in it;
 #   - limits (prlimit, per process): CPU seconds, address space, file size, open files, no core
-#     files, and (as root: the sandbox user's) number of processes; wall time: the grader kills it.
+#     files; wall time: the grader kills it; /tmp at most SANDBOX_TMP;
+#   - the number of processes and threads, per job, with or without root: prlimit --nproc runs
+#     inside the sandbox's own user namespace, and Linux (5.14 on) counts a user's processes per
+#     user namespace, so a fork bomb meets its own job's limit, never a neighbour's (check_isolation).
 def job_uid(job):
     """The user job's sandbox runs as (when the grader is root): SANDBOX_UID + N for scratch/jobN."""
     m = re.fullmatch(r"job(\d+)", os.path.basename(os.path.normpath(job)))
     return SANDBOX_UID + (int(m.group(1)) if m else 0)
 
 
-def sandbox(job, mode, env=None, cpu=600, shared=None):
+def sandbox(job, mode, env=None, cpu=600, shared=None, work=None, binds=()):
     """The command prefix that runs a command in job's copy. mode: build | test | setup. shared:
-    the pristine copy whose build/common (never rebuilt by a submission) is seen read-only."""
-    work = os.path.join(job, "work")
+    the pristine copy whose build/common (never rebuilt by a submission) is seen read-only. work:
+    another tree to see read-only at WORK (the judge's); binds: (path, place) pairs seen read-only."""
+    work = work or os.path.join(job, "work")
     cmd = []
     if os.geteuid() == 0:
         uid = job_uid(job)
         cmd += ["setpriv", f"--reuid={uid}", f"--regid={uid}", "--clear-groups"]
-    cmd += ["prlimit", f"--cpu={cpu}", f"--as={8 << 30}", f"--fsize={1 << 30}", "--nofile=1024", "--core=0",
-            f"--nproc={512 if os.geteuid() == 0 else 8192}", "--"]
+    cmd += ["prlimit", f"--cpu={cpu}", f"--as={8 << 30}", f"--fsize={1 << 30}", "--nofile=1024", "--core=0", "--"]
     cmd += ["bwrap", "--unshare-all", "--die-with-parent", "--new-session", "--clearenv",
             "--ro-bind", "/usr", "/usr", "--ro-bind", "/etc", "/etc"]
     for link in ("bin", "lib", "lib64", "sbin", "lib32"):
         if os.path.islink("/" + link):
             cmd += ["--symlink", os.readlink("/" + link), "/" + link]
-    cmd += ["--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"]
+    cmd += ["--proc", "/proc", "--dev", "/dev", "--size", str(SANDBOX_TMP), "--tmpfs", "/tmp"]
     if mode == "setup":
         cmd += ["--bind", work, WORK]
     else:
@@ -110,6 +131,8 @@ def sandbox(job, mode, env=None, cpu=600, shared=None):
             cmd += ["--bind", os.path.join(job, "out"), OUT]
         if shared:
             cmd += ["--ro-bind", os.path.join(shared, "build", "common"), WORK + "/build/common"]
+    for path, place in binds:
+        cmd += ["--ro-bind", path, place]
     cmd += ["--chdir", WORK]
     base = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", "TMPDIR": "/tmp"}
     if os.environ.get("LP_NUM_THREADS"):
@@ -117,7 +140,18 @@ def sandbox(job, mode, env=None, cpu=600, shared=None):
     base.update(env or {})
     for k, v in sorted(base.items()):
         cmd += ["--setenv", k, v]
-    return cmd + ["--"]
+    return cmd + ["--", "prlimit", f"--nproc={SANDBOX_NPROC}", "--"]
+
+
+def check_isolation():
+    """Refuses to grade where one job's processes could exhaust another's: without root (no user of
+    its own per job) that takes Linux 5.14 or later, which counts processes per user namespace."""
+    if os.geteuid() == 0:
+        return
+    release = re.match(r"(\d+)\.(\d+)", os.uname().release)
+    if not release or (int(release.group(1)), int(release.group(2))) < (5, 14):
+        die(f"not graded: without root, a job's process limit holds apart from its neighbours' only on Linux 5.14 "
+            f"or later (this is {os.uname().release}); run grade.sh as root (each job its own user) or on a newer kernel", 2)
 
 
 def kill_group(p):
@@ -137,7 +171,10 @@ def run_limited(cmd, wall):
         for chunk in iter(lambda: p.stdout.read(65536), b""):
             if size < (4 << 20):
                 chunks.append(chunk)
-                size += len(chunk)
+            size += len(chunk)
+            if size > MAX_PROCESS_OUTPUT:
+                kill_group(p)
+                break
         p.wait()
     finally:
         timer.cancel()
@@ -214,15 +251,26 @@ def repo_key(lab):
     return os.environ.get("GRADE_PRISTINE_KEY") or h.hexdigest()[:16]
 
 
+def owned_by_us(path):
+    """path is this user's and nobody else can write it (a cache another user could fill is not used)."""
+    st = os.lstat(path)
+    return stat.S_ISDIR(st.st_mode) and st.st_uid == os.geteuid() and not st.st_mode & 0o022
+
+
 def pristine(lab, cache_root, jobs):
-    """The cached pristine copy of lab: {dir, copy (the handed-out copy), work (solved + build)}."""
+    """The cached pristine copy of lab: {dir, copy (the handed-out copy), work (solved + build),
+    judge (the handed-out copy built: the judge's tests)}."""
     key = repo_key(lab)
     d = os.path.join(cache_root, f"{lab}-{key}")
+    os.makedirs(cache_root, mode=0o755, exist_ok=True)
+    if not owned_by_us(cache_root):
+        die(f"--cache {cache_root}: not a folder of this user's that only this user can write; "
+            f"a cache that another user could fill is not trusted (choose another --cache)", 2)
     if os.path.isfile(os.path.join(d, "done")):
+        if not owned_by_us(d):
+            die(f"{d}: the cached pristine copy is not this user's alone; delete it or choose another --cache", 2)
         log(f"grade: pristine {lab} from the cache ({d})")
         return d
-    os.makedirs(cache_root, mode=0o755, exist_ok=True)
-    os.chmod(cache_root, 0o755)
     tmp = tempfile.mkdtemp(prefix=f"{lab}-{key}-", dir=cache_root)
     os.chmod(tmp, 0o755)
     t0 = time.time()
@@ -267,8 +315,24 @@ def pristine(lab, cache_root, jobs):
         log(f"grade: the {short} test programs lack {' '.join(sorted(wanted - suites))}: building everything")
     with open(os.path.join(tmp, "tests.json"), "w") as f:
         json.dump(tests, f, indent=1, sort_keys=True)
+    # The judge: the handed-out copy (every exercise its stub) built with the same test programs. It
+    # runs the tests on the probe's records (tests/probe.h): no student code, and no solution either,
+    # so a value that a test takes from the lab without a probe comes from a stub and the solution
+    # fails its own test there (Grader refuses to start).
+    judge = os.path.join(tmp, "judge")
+    shutil.copytree(os.path.join(tmp, "copy"), os.path.join(judge, "work"), symlinks=True)
+    os.makedirs(os.path.join(judge, "work", "build"))
+    chown_tree(judge)
+    code, out = run_limited(sandbox(judge, "setup", cpu=3600) + ["cmake", "-S", ".", "-B", "build", "-DCMAKE_BUILD_TYPE=RelWithDebInfo",
+                                                                "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -DNDEBUG",
+                                                                "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -DNDEBUG"], 600)
+    if code == 0:
+        code, out = run_limited(sandbox(judge, "setup", cpu=3600) + ["nice", "-n", "10", "cmake", "--build", "build", f"-j{jobs}",
+                                                                    "--target", *sorted({os.path.basename(b) for b in tests})], 3600)
+    if code != 0:
+        fail_build(tmp, lab + " (the judge: the handed-out copy)", out)
     if os.geteuid() == 0:  # the cache is the grader's: no sandbox may change it
-        subprocess.run(["chown", "-R", "-h", "0:0", work], check=True)
+        subprocess.run(["chown", "-R", "-h", "0:0", work, os.path.join(judge, "work")], check=True)
     open(os.path.join(tmp, "done"), "w").write(f"built in {time.time() - t0:.0f} s\n")
     try:
         os.rename(tmp, d)
@@ -336,29 +400,37 @@ RUN_RE = re.compile(r"^\[ RUN      \] (\S+)")
 END_TEST_RE = re.compile(r"^\[ +(OK|FAILED|SKIPPED) +\] (\S+?),?( |$)")
 
 
-def run_tests(job, by_binary, limits, start_limit=30.0, shared=None):
+def run_tests(job, by_binary, limits, start_limit=30.0, shared=None, env_extra=None, work=None, binds=(), after_hang=None):
     """Runs tests {binary: [(name, env)]} in job's sandbox, each with its own wall limit
     (limits[name] seconds). Returns {name: {status, output, seconds, pictures}}; status is one of
-    ok, failed, timeout, crashed, not-run."""
+    ok, failed, timeout, crashed, not-run. env_extra, work, binds: see sandbox(). after_hang: the
+    limits once a test has hung (a hang costs less: 3× the solution's own time + 2 s)."""
     results = {}
     outdir = os.path.join(job, "out")
     limits = dict(limits)
-    def shrink():  # after a hang, the other tests get 3x the solution's time + 2 s (a hang costs less)
-        for n, lim in limits.items():
-            limits[n] = min(lim, 3 * max(lim - 5, 0) / 10 + 2)
     for binary in sorted(by_binary):
         pending = [n for n, _ in by_binary[binary]]
         env = {}
         for _, e in by_binary[binary]:
             env.update(e)
         env["LAB_TEST_OUTPUT"] = OUT
+        env.update(env_extra or {})
         while pending:
-            cmd = sandbox(job, "test", env=env, shared=shared) + [binary, "--gtest_color=no", "--gtest_filter=" + ":".join(pending)]
+            cmd = sandbox(job, "test", env=env, shared=shared, work=work, binds=binds) + \
+                [binary, "--gtest_color=no", "--gtest_filter=" + ":".join(pending)]
             p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
-            lines = queue.Queue()
+            lines = queue.Queue()  # at most MAX_PROCESS_OUTPUT: the reader stops there
 
-            def reader(stream=p.stdout, q=lines):
-                for raw in iter(stream.readline, b""):
+            def reader(stream=p.stdout, q=lines, proc=p):
+                # Lines of at most MAX_LINE (a longer one comes in pieces), MAX_PROCESS_OUTPUT in all:
+                # past that the program is killed, and the rest of its output is not read.
+                total = 0
+                for raw in iter(lambda: stream.readline(MAX_LINE), b""):
+                    total += len(raw)
+                    if total > MAX_PROCESS_OUTPUT:
+                        q.put(f"(the test program wrote more than {MAX_PROCESS_OUTPUT >> 20} MiB: killed)\n")
+                        kill_group(proc)
+                        break
                     q.put(raw.decode("utf-8", "replace"))
                 q.put(None)
             threading.Thread(target=reader, daemon=True).start()
@@ -409,7 +481,8 @@ def run_tests(job, by_binary, limits, start_limit=30.0, shared=None):
                                        f"\n(killed: still running after its limit of {limits.get(killed_for, 30.0):.0f} s)\n",
                                        "pictures": []}
                 pending.remove(killed_for)
-                shrink()
+                for n, lim in (after_hang or {}).items():
+                    limits[n] = min(limits.get(n, lim), lim)
                 continue
             if killed_for == "start":
                 for n in pending:
@@ -442,12 +515,16 @@ def pictures_under(outdir):
 class Grader:
     def __init__(self, lab, cache_dir, jobs, scratch):
         self.lab, self.jobs, self.scratch = lab, jobs, scratch
+        self.trust_regions = False
         self.exercises = exercises_of(lab)
         if not self.exercises:
             die(f"{lab} has no exercises")
         self.pdir = pristine(lab, cache_dir, jobs)
         self.copy = os.path.join(self.pdir, "copy")
         self.work = os.path.join(self.pdir, "work")
+        self.judge_work = os.path.join(self.pdir, "judge", "work")
+        # the folders whose text the judge's hints read (the lab's own, as the variant has them)
+        self.source_dirs = [d for d in (lab, os.path.join("shaders", lab)) if os.path.isdir(os.path.join(self.work, d))]
         self.solved = {}  # file → lines of the solved (instructors') file
         for e in self.exercises:
             if e["file"] not in self.solved:
@@ -469,10 +546,9 @@ class Grader:
         with open(os.path.join(self.pdir, "tests.json")) as f:
             self.tests = {b: [tuple(t) for t in ts] for b, ts in json.load(f).items()}  # binary → [(name, env)]
         self.binary_of = {n: b for b, ts in self.tests.items() for n, _ in ts}
-        # An exercise's grade: the tests of its "Checked by" list (the tests written to check it).
-        # tests/graded_exercises.txt's rows say more, which exercises a failing test can blame; they
-        # name texture_terms for 37 of lab 3's 44 graded tests (a textured picture needs it), and
-        # running those for every exercise made a lab 3 submission cost 175 s (now about 33 s).
+        # An exercise's grade: the tests of its "Checked by" list (the tests written to check it),
+        # not every test that tests/graded_exercises.txt says can blame it (a textured picture needs
+        # texture_terms: running all of those for every exercise would multiply a submission's time).
         names = sorted(self.binary_of)
         for e in self.exercises:
             sel = {n for n in names if any(fnmatch.fnmatchcase(n, p) for p in e["checked"])}
@@ -482,15 +558,51 @@ class Grader:
         self.all_tests = sorted({t for e in self.exercises for t in e["tests"]})
         log(f"grade: {lab}: {len(self.exercises)} exercises, {len(self.all_tests)} graded tests; timing the solution")
         t0 = time.time()
-        base = run_tests(job, self.subset(self.all_tests), {n: 120.0 for n in self.all_tests}, start_limit=120, shared=self.work)
+        first = {n: 120.0 for n in self.all_tests}
+        base, probe = self.run_judged(job, self.all_tests, first, first, start_limit=120)
         shutil.rmtree(job, ignore_errors=True)
+        shutil.rmtree(job + "-judge", ignore_errors=True)
         bad = [n for n in self.all_tests if base[n]["status"] != "ok"]
         if bad:
-            die(f"the solution itself fails {len(bad)} graded test(s) ({', '.join(bad[:5])}): fix the repository first", 1)
-        # a test's limit: ten times the solution's own time, plus 5 s (process start, a loaded machine)
-        self.limits = {n: 10 * base[n]["seconds"] + 5 for n in self.all_tests}
+            n = bad[0]
+            why = ("the probe" if probe[n]["status"] not in ("ok", "failed") else
+                   "the judge, on the solution's own values: a value the test takes from the lab without LAB_PROBE (tests/probe.h) "
+                   "comes from a stub there" if probe[n]["status"] == "ok" else "the probe (the solution's own run)")
+            die(f"the solution itself fails {len(bad)} graded test(s) ({', '.join(bad[:5])}) in {why}: fix the repository first\n"
+                f"{n}:\n{base[n]['output'][-1500:]}", 1)
+        # A test's limit: ten times the solution's own time, plus 5 s (process start, a loaded
+        # machine); once a test has hung, 3× plus 2 s for the rest of that program's tests.
+        self.limits = {n: 10 * probe[n]["seconds"] + 5 for n in self.all_tests}
+        self.after_hang = {n: 3 * probe[n]["seconds"] + 2 for n in self.all_tests}
+        self.judge_limits = {n: 10 * base[n]["seconds"] + 5 for n in self.all_tests}
         self.baseline = base
-        log(f"grade: the solution passes all {len(self.all_tests)} tests in {time.time() - t0:.1f} s")
+        log(f"grade: the solution passes all {len(self.all_tests)} tests, probed and judged, in {time.time() - t0:.1f} s")
+
+    def run_judged(self, job, tests, limits, judge_limits, start_limit=30.0, after_hang=None):
+        """(results, the probe's own results) of tests on job's build: the probe records in job's
+        sandbox, the judge decides in a sandbox of its own on the judge's build (module docstring)."""
+        records = os.path.join(job, "out", "probe")
+        os.makedirs(records, exist_ok=True)
+        chown_tree(job)
+        probe = run_tests(job, self.subset(tests), limits, start_limit=start_limit, shared=self.work,
+                          env_extra={"LAB_PROBE": "record", "LAB_PROBE_DIR": OUT + "/probe"}, after_hang=after_hang)
+        # A test the probe ran to its end (as far as its output tells: the student's code may print
+        # anything) goes to the judge; a crash or a hang is the probe's own ending, and fails.
+        ended = [n for n in tests if probe[n]["status"] in ("ok", "failed")]
+        results = {n: dict(probe[n], pictures=[]) for n in tests if n not in ended}
+        if ended:
+            judge = job.rstrip("/") + "-judge"
+            os.makedirs(os.path.join(judge, "out"))
+            chown_tree(judge)
+            binds = [(records, PROBE)] + [(os.path.join(job, "work", d), f"{WORK}/{d}") for d in self.source_dirs]
+            judged = run_tests(judge, self.subset(ended), judge_limits, start_limit=start_limit, work=self.judge_work, binds=binds,
+                               env_extra={"LAB_PROBE": "replay", "LAB_PROBE_DIR": PROBE})
+            for n, r in judged.items():
+                r["pictures_dir"] = os.path.join(judge, "out")
+                if r["status"] in ("timeout", "crashed", "not-run"):
+                    r["output"] = "(the judge, which runs no student code, did not finish this test on the probe's values)\n" + r["output"]
+            results.update(judged)
+        return results, probe
 
     def subset(self, names):
         out = collections.defaultdict(list)
@@ -550,6 +662,13 @@ class Grader:
         except Exception as ex:  # the grader's own failure: reported, the class goes on
             res = {"build": "error", "log": f"grader error: {ex}", "tests": {}}
         fut.set_result(res)
+        # Kept for the next submission with the same code only when the environment had no say in
+        # it: not a grader error, a build or test that ran out of time, or a crash (a loaded
+        # machine, a neighbour's fork bomb, memory), which the next run may not repeat.
+        if res["build"] in ("error", "timeout") or \
+                any(r["status"] in ("timeout", "crashed", "not-run") for r in res["tests"].values()):
+            with self.lock:
+                self.variants.pop(key, None)
         return res
 
     def _run_variant(self, changes, tests):
@@ -577,9 +696,14 @@ class Grader:
         t_build = time.time() - t1
         if code != 0:
             shutil.rmtree(job, ignore_errors=True)
-            return {"build": "timeout" if code is None else "failed", "log": out, "tests": {}}
+            # "does not compile" only on the compiler's word; a build that stopped without one
+            # (killed for memory, a full disk) is the environment's failure
+            compiled = code is not None and re.search(r"\berror\b", out)
+            return {"build": "timeout" if code is None else "failed" if compiled else "error",
+                    "log": out if compiled or code is None else "grader error: the build stopped without a compiler error:\n" + out[-2000:],
+                    "tests": {}}
         t2 = time.time()
-        res = run_tests(job, self.subset(tests), self.limits, shared=self.work)
+        res, _ = self.run_judged(job, tests, self.limits, self.judge_limits, after_hang=self.after_hang)
         if os.environ.get("GRADE_PROFILE"):
             log(f"    profile {sorted(changes)} {len(tests)} tests: copy {t_copy:.1f} s, build {t_build:.1f} s, tests {time.time() - t2:.1f} s")
         # the failing tests' pictures, kept (plain PNG files only) before the job's copy goes
@@ -589,10 +713,12 @@ class Grader:
             for i, pic in enumerate(r.get("pictures", []) if r["status"] != "ok" else []):
                 os.makedirs(pics, exist_ok=True)
                 dst = os.path.join(pics, f"{len(os.listdir(pics))}.png")
-                if copy_png(os.path.join(job, "out", pic), dst):
+                if copy_png(os.path.join(r.get("pictures_dir", os.path.join(job, "out")), pic), dst):
                     kept.append((pic, dst))
             r["pictures"] = kept
+            r.pop("pictures_dir", None)
         shutil.rmtree(job, ignore_errors=True)
+        shutil.rmtree(job + "-judge", ignore_errors=True)
         return {"build": "ok", "tests": res}
 
 
@@ -735,6 +861,7 @@ class Submission:
         self.fatal = None
         self.kept = {}       # (exercise, test) → pictures next to the report
         self.code = {}       # exercise → the student's region, as handed in
+        self.flagged = {}    # exercise → why its region is not graded (region_check.py)
         self.line = {}       # exercise → the line of its marker in the student's own file
 
 
@@ -773,6 +900,9 @@ def grade_submission(g, entry, name, outdir, progress):
             strip = lambda ls: [l.rstrip() for l in ls if l.strip()]
             s.region[e["name"]] = ("solution" if strip(body) == strip(e["solution"]) else
                                    "stub" if strip(body) == strip(e["stub"]) or strip(body) == strip(e["stub_lines"]) else "code")
+            why_not = None if g.trust_regions else region_check.problems("".join(body))
+            if why_not:
+                s.flagged[e["name"]] = why_not
         s.outside = changed_outside(g.copy, root)
 
         def apply(names):
@@ -804,7 +934,7 @@ def grade_submission(g, entry, name, outdir, progress):
                     r = s.isolated[ex]
                     ok = r["build"] == "ok" and all(r["tests"].get(t, {}).get("status") == "ok" for t in next(e for e in g.exercises if e["name"] == ex)["tests"])
                     progress(f"{name}: {ex} {'passes' if ok else 'fails'} ({time.time() - t0:.0f} s)")
-        compile_bad, stopped = [], []  # stopped: the exercises with a test that crashed or hung
+        compile_bad, stopped, grader_bad = [], [], []  # stopped: the exercises with a test that crashed or hung
         for e in g.exercises:
             n = e["name"]
             if s.region[n] == "missing":
@@ -813,6 +943,19 @@ def grade_submission(g, entry, name, outdir, progress):
                                  f"{e['file']} any more, so there is no code to grade. Put the markers back around your code.")
                 continue
             r = s.isolated[n]
+            if n in s.flagged:
+                s.grades[n] = 0
+                passing = sum(r["tests"].get(t, {}).get("status") == "ok" for t in e["tests"])
+                s.messages[n] = (f"`{n}` is not graded: its region ({e['file']}) steps outside the exercise: "
+                                 f"{'; '.join(s.flagged[n])}. A region holds the exercise's own statements and nothing "
+                                 f"else (docs/solutions.md, \"What a region may hold\"). For the instructor: "
+                                 + (f"{passing} of its {len(e['tests'])} tests pass." if r["build"] == "ok" else "it does not build."))
+                continue
+            if r["build"] == "error":
+                s.grades[n] = 0
+                grader_bad.append(n)
+                s.messages[n] = f"`{n}` ({e['file']}) was not graded: the grader's build failed, not the compiler:\n" + r.get("log", "")[-800:]
+                continue
             if r["build"] != "ok":
                 s.grades[n] = 0
                 compile_bad.append(n)
@@ -832,11 +975,16 @@ def grade_submission(g, entry, name, outdir, progress):
                     s.messages[n] = f"`{n}` is still the stub.\n" + s.messages[n]
             else:
                 s.messages[n] = f"`{n}`: all {len(e['tests'])} tests that check it pass ({', '.join(e['tests'][:6])}{' …' if len(e['tests']) > 6 else ''})."
+        if s.flagged:
+            s.notes.append("flagged, 0, for the instructor to look at: " +
+                           "; ".join(f"{n} ({', '.join(why)})" for n, why in s.flagged.items()))
         missing = [e["name"] for e in g.exercises if s.region[e["name"]] == "missing"]
         if missing:
             s.notes.append("markers deleted (not done): " + " ".join(missing))
         if compile_bad:
             s.notes.append("did not compile: " + " ".join(compile_bad))
+        if grader_bad:
+            s.notes.append("not graded, the grader's build failed (regrade): " + " ".join(grader_bad))
         # Which of an exercise's tests hit the wall-time limit and which crashed first can change
         # from run to run (code that allocates without end meets the time limit or the memory
         # limit first, depending on the machine's load): grades.csv names the exercises only, so a
@@ -891,7 +1039,7 @@ def test_message(output):
     lines = output.splitlines()
     for i, l in enumerate(lines):
         if l.startswith("[ exercise ]") or (keep and keep[-1].startswith("[ exercise ]") and l.startswith(" ")) or \
-                "Failure" in l or l.startswith("(") or re.match(r"^(Expected|Value of|  Actual|Which is|    Which)", l):
+                "Failure" in l or l.startswith("(") or "(probe)" in l or re.match(r"^(Expected|Value of|  Actual|Which is|    Which)", l):
             keep.append(l.replace(WORK + "/", "").replace(OUT + "/", "test_output/"))
     text = "\n".join(keep[:40]) or "\n".join(lines[-20:])
     return text + "\n"
@@ -908,7 +1056,7 @@ def write_outputs(g, subs, out):
     with open(os.path.join(out, "grades.csv"), "w") as f:
         f.write(buf.getvalue())
     for s in subs:
-        d = os.path.join(out, s.name)
+        d = os.path.join(out, STUDENTS, s.name)
         os.makedirs(d, exist_ok=True)
         whole_ok = sorted(t for t, r in (s.whole or {}).get("tests", {}).items() if r["status"] == "ok")
         res = {"score": sum(s.grades.get(n, 0) for n in names),
@@ -943,7 +1091,7 @@ def report_html(g, s):
     e_ = html.escape
     names = [e["name"] for e in g.exercises]
     score = sum(s.grades.get(n, 0) for n in names)
-    b = [f"<h1>{e_(g.lab)}: {e_(s.name)} — {score} / {len(names)}</h1>", "<p><a href=\"../index.html\">← class summary</a></p>"]
+    b = [f"<h1>{e_(g.lab)}: {e_(s.name)} — {score} / {len(names)}</h1>", "<p><a href=\"../../index.html\">← class summary</a></p>"]
     if s.notes:
         b.append("<p><b>Notes:</b> " + e_("; ".join(s.notes)) + "</p>")
     whole = (s.whole or {}).get("tests", {})
@@ -1007,7 +1155,7 @@ def index_html(g, subs):
              "<th>score</th><th>notes</th></tr>")
     for s in subs:
         cells = "".join(f"<td class=\"{'p' if s.grades.get(n, 0) else 'f'}\">{s.grades.get(n, 0)}</td>" for n in names)
-        b.append(f"<tr><td><a href=\"{e_(s.name)}/report.html\">{e_(s.name)}</a></td>{cells}"
+        b.append(f"<tr><td><a href=\"{STUDENTS}/{e_(s.name)}/report.html\">{e_(s.name)}</a></td>{cells}"
                  f"<td>{sum(s.grades.get(n, 0) for n in names)}</td><td>{e_('; '.join(s.notes))}</td></tr>")
     b.append("</table>")
     return page(f"{g.lab} grades", "\n".join(b))
@@ -1028,7 +1176,10 @@ def main():
     ap.add_argument("submissions")
     ap.add_argument("--out")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
-    ap.add_argument("--cache", default=os.environ.get("GRADE_CACHE", "/tmp/grade-cache"))
+    ap.add_argument("--cache", default=os.environ.get("GRADE_CACHE") or
+                    os.path.join(os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"), "vulkan-labs-grade"))
+    ap.add_argument("--no-region-check", action="store_true",
+                    help="grade flagged regions as any other (the grader's own test: what the judge alone decides)")
     a = ap.parse_args()
     lab = resolve_lab(a.lab)
     if not os.path.isdir(a.submissions):
@@ -1056,7 +1207,9 @@ def main():
     os.chmod(scratch, 0o711)
     t_start = time.time()
     try:
+        check_isolation()
         g = Grader(lab, a.cache, max(1, a.jobs), scratch)
+        g.trust_regions = a.no_region_check
         subs = []
         names = sorted(by_name)
         t_first = time.time()
@@ -1065,7 +1218,7 @@ def main():
             left = f", about {done / i * (len(names) - i):.0f} s left" if i else ""
             log(f"[{i + 1}/{len(names)}] {n}{left}")
             t0 = time.time()
-            s = grade_submission(g, os.path.join(a.submissions, by_name[n]), n, os.path.join(out, n),
+            s = grade_submission(g, os.path.join(a.submissions, by_name[n]), n, os.path.join(out, STUDENTS, n),
                                  lambda m: log(f"    {m}"))
             subs.append(s)
             log(f"    {n}: {sum(s.grades.values())}/{len(g.exercises)} in {time.time() - t0:.1f} s" + (f" — {'; '.join(s.notes)}" if s.notes else ""))

@@ -6,7 +6,13 @@ Each submission is the copy with its regions filled in one way; the expected gra
 exercise follows from what was put where (isolated credit: an exercise is graded with the solution
 of every other one). Also checked: nothing outside the grader's output folder changed (a canary
 folder, the other submissions, the grader's own files), the run finished, every output exists,
-and regrading gives the same grades.csv byte for byte. Exit 77 (skip) without a working bubblewrap.
+and regrading gives the same grades.csv byte for byte. Exit 77 (skip) without a working bubblewrap
+(a failure in CI).
+
+The forgeries (FORGERIES): each exercise of one submission forged the way a student who knows
+GoogleTest would, none of them solved. Each is graded 0 and flagged (region_check.py); graded once
+more with --no-region-check, each is still 0 (the judge decides, not the process that runs the
+student's code), and the honest submission beside them keeps its grade.
 """
 import csv
 import hashlib
@@ -29,6 +35,11 @@ FILE_OF = {"look_at": CAMERA, "transform": CAMERA, "projection": CAMERA, "mode_s
 
 
 def skip(why, test="grading_lab1"):
+    """Skips (exit 77) on a machine without the sandbox; in CI ($CI set) that fails instead: a
+    green CI must have run the grader."""
+    if os.environ.get("CI"):
+        print(f"{test}: FAIL: {why} (in CI the grader must run)")
+        sys.exit(1)
     print(f"{test}: SKIPPED: {why}")
     sys.exit(77)
 
@@ -58,6 +69,32 @@ def fill(sub, name, body):
     s, e = region(lines, name)
     lines[s + 1:e] = body
     open(path, "w").write("".join(lines))
+
+
+# Each forged region, and a word its flag must name. None of them holds the solution.
+FORGERIES = {
+    # print the verdict GoogleTest would print, then exit 0 before any check runs
+    "mode_switch": (["        std::printf(\"[ RUN      ] ModeSwitch.KeepsThePoseExactly\\n[       OK ] ModeSwitch.KeepsThePoseExactly (0 ms)\\n\");\n",
+                     "        std::fflush(stdout);\n", "        std::_Exit(0);\n"], "printf"),
+    # close the function, add a static object that prints the verdict as the program starts, reopen
+    "orbit": (["    return;\n", "}\n",
+               "static const int forged = [] { std::printf(\"[       OK ] Controls.OrbitKeepsTheDistanceAndTarget (0 ms)\\n\"); return 0; }();\n",
+               "void forged_tail() {\n"], "braces"),
+    # write the record the judge reads (tests/probe.h), for every test it could be
+    "look_at": (["    for (const char* t : {\"LookAt.DownMinusZIsATranslation\", \"LookAt.LookingAlongPlusX\", \"Lab1Render.DefaultScene\"}) {\n",
+                 "        std::string path = std::string(\"/grade/out/probe/\") + t + \".probe\";\n",
+                 "        if (std::FILE* f = std::fopen(path.c_str(), \"w\")) { std::fputs(\"[       OK ] PASS\\n\", f); std::fclose(f); }\n",
+                 "    }\n", "    glm::dmat4 c(1.0);\n"], "fopen"),
+    # a jump around what follows, printing the verdict on the way
+    "transform": (["    static void* jump[5];\n",
+                   "    if (__builtin_setjmp(jump) == 0) { std::printf(\"[       OK ] Transform.AllThreeAnglesAtOnce (0 ms)\\n\"); __builtin_longjmp(jump, 1); }\n",
+                   "    return glm::dmat4(1.0);\n"], "__builtin_setjmp"),
+    # the oracle the test program links, declared and called; and the solved lab read from the sandbox
+    "projection": (["    }\n", "namespace ref { struct Camera; glm::dmat4 projection(const Camera&, double); }\n",
+                    "glm::dmat4 forged_projection(double fov_y_deg, double aspect) {\n",
+                    "    if (std::FILE* f = std::fopen(\"/grade/work/tests/reference/cpu_reference.h\", \"r\")) std::fclose(f);\n",
+                    "    glm::dmat4 p(1.0);\n", "    (void)fov_y_deg; (void)aspect;\n"], "ref"),
+}
 
 
 def tree_hash(path):
@@ -136,7 +173,7 @@ def run(tmp):
              [f"        if (FILE* f = std::fopen(\"{t}\", \"a\")) {{ std::fputs(\"pwned\\n\", f); std::fclose(f); }}\n" for t in targets] + \
              [f"        if (std::system(\"rm -rf {canary} {os.path.join(subs, 'partial')}; echo pwned > {canary}/sh.txt\")) {{}}\n", "    }\n"]
     fill(d, "look_at", attack + solution("look_at"))
-    expected["escape"] = ([1, 1, 1, 1, 1], [])
+    expected["escape"] = ([0, 1, 1, 1, 1], ["flagged, 0, for the instructor to look at: look_at (calls fopen"])
     # Every check removed from the tests, the graded rows emptied, the exercises left stubbed.
     d = make("tampered", [])
     for f in ("tests/test_camera.cpp", "tests/test_lab1_render.cpp"):
@@ -185,9 +222,13 @@ def run(tmp):
         for f in sorted(os.listdir(d)):
             t.add(os.path.join(d, f), arcname=f)
     shutil.rmtree(d)
-    expected["bombs"] = ([0, None, 0, 1, 1], ["did not finish (a crash or the time limit): "])
+    expected["bombs"] = ([0, 0, 0, 1, 1], ["did not finish (a crash or the time limit): ", "transform (calls system"])
     os.makedirs(os.path.join(subs, "empty"))
     expected["empty"] = ([0, 0, 0, 0, 0], ["empty"])
+    d = make("forged", [])
+    for n, (body, _) in FORGERIES.items():
+        fill(d, n, body)
+    expected["forged"] = ([0, 0, 0, 0, 0], ["flagged, 0, for the instructor to look at: "])
     print(f"grading_lab1: {len(expected)} submissions written in {time.time() - t0:.0f} s")
 
     before = {"canary": tree_hash(canary), "submissions": tree_hash(subs),
@@ -234,7 +275,7 @@ def run(tmp):
             problems.append(f"{name}: look_at and projection not among the exercises that did not finish: {row[-1]}")
         if name not in ("tampered", "no_markers") and "changed outside" in row[-1]:
             problems.append(f"{name}: notes say changed outside: {row[-1]}")
-        res = json.load(open(os.path.join(out, name, "results.json")))
+        res = json.load(open(os.path.join(out, "students", name, "results.json")))
         if res["score"] != sum(grades) or [{t["name"]: t["score"] for t in res["tests"]}.get(n) for n in EXERCISES] != grades or \
                 any(set(t) < {"name", "score", "max_score", "output"} or not t["output"] for t in res["tests"]):
             problems.append(f"{name}: results.json {json.dumps(res)[:300]}")
@@ -242,16 +283,16 @@ def run(tmp):
             g = grades[EXERCISES.index(t["name"])] if t["name"] in EXERCISES else 1
             if not g and t["name"] not in t["output"]:
                 problems.append(f"{name}: the message for {t['name']} does not name it: {t['output'][:200]}")
-        if not os.path.isfile(os.path.join(out, name, "report.html")):
+        if not os.path.isfile(os.path.join(out, "students", name, "report.html")):
             problems.append(f"{name}: no report.html")
     index = open(os.path.join(out, "index.html")).read()
     for name in expected:
-        if f'href="{name}/report.html"' not in index:
+        if f'href="students/{name}/report.html"' not in index:
             problems.append(f"index.html has no link to {name}'s report")
     # a failing render test's picture reaches the report (transform stubbed: Lab1Render.TransformCameraYawPitchRoll)
-    report = open(os.path.join(out, "partial", "report.html")).read()
+    report = open(os.path.join(out, "students", "partial", "report.html")).read()
     pics = re.findall(r'<img src="([^"]+)"', report)
-    if not pics or not all(os.path.isfile(os.path.join(out, "partial", p)) for p in pics):
+    if not pics or not all(os.path.isfile(os.path.join(out, "students", "partial", p)) for p in pics):
         problems.append(f"partial/report.html: no expected|actual|difference picture ({pics})")
     # each exercise at its marker's line in the student's own file (a stub is shorter than the
     # solution: the instructors' line of a later exercise in the same file would point elsewhere)
@@ -262,6 +303,33 @@ def run(tmp):
     if "http://" in index or "https://" in index or "http" in report.replace("https://", "").split("<body>")[0]:
         problems.append("the pages make external requests")
 
+    # each forgery flagged for its own reason, in the message that the student's report shows
+    forged = {t["name"]: t["output"] for t in json.load(open(os.path.join(out, "students", "forged", "results.json")))["tests"]}
+    for n, (_, word) in FORGERIES.items():
+        if "is not graded: its region" not in forged.get(n, "") or word not in forged.get(n, ""):
+            problems.append(f"forged: {n} is not flagged for `{word}`: {forged.get(n, '')[:300]}")
+    # The same forgeries with the region check off: the judge alone gives each 0, and the honest
+    # submission beside them keeps its grade. Each forgery builds (it is the judge that refuses it),
+    # but the oracle's call, which the lab's own program cannot link.
+    only = os.path.join(tmp, "forgeries")
+    os.makedirs(only)
+    shutil.copytree(os.path.join(subs, "forged"), os.path.join(only, "forged"), symlinks=True)
+    shutil.copytree(os.path.join(subs, "solved"), os.path.join(only, "solved"), symlinks=True)
+    out3 = os.path.join(tmp, "out3")
+    r3 = subprocess.run(["bash", os.path.join(ROOT, "scripts/grade.sh"), "1", only, "--out", out3, "--no-region-check"],
+                        capture_output=True, text=True)
+    if r3.returncode != 0:
+        problems.append(f"grading the forgeries with --no-region-check exited {r3.returncode}: {r3.stderr[-800:]}")
+    else:
+        for who, want in (("forged", 0), ("solved", 1)):
+            res = json.load(open(os.path.join(out3, "students", who, "results.json")))
+            for t in res["tests"]:
+                if t["score"] != want:
+                    problems.append(f"--no-region-check: {who} {t['name']} scored {t['score']}, expected {want}: {t['output'][:300]}")
+                if who == "forged" and t["name"] != "projection" and "does not compile" in t["output"]:
+                    problems.append(f"--no-region-check: the {t['name']} forgery did not build, so it proves nothing: {t['output'][:300]}")
+        print(f"grading_lab1: the forgeries with the region check off: all 0, the honest submission 5 of 5")
+
     # the same folder again: the same grades.csv, byte for byte
     out2 = os.path.join(tmp, "out2")
     r2 = subprocess.run(["bash", os.path.join(ROOT, "scripts/grade.sh"), "1", subs, "--out", out2], capture_output=True, text=True)
@@ -270,7 +338,7 @@ def run(tmp):
     # Byte for byte, but for the rows of submissions whose outcome races the machine's timing (a
     # grade not asserted above: the fork bomb's children against the test's time limit; measured
     # both ways on 28 Nov 2026, 1 and then 0 for transform).
-    racy = {n for n, (g, _) in expected.items() if None in g}
+    racy = {n for n, (g, _) in expected.items() if None in g} | {"bombs"}
     def stable(o):
         return b"".join(l for l in open(os.path.join(o, "grades.csv"), "rb").read().splitlines(keepends=True)
                         if l.split(b",")[0].decode() not in racy)

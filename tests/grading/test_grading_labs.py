@@ -104,14 +104,14 @@ def grade_lab(tmp, lab, mixed_only):
         problems += [f"{name}: notes lack '{n}': {row[-1]}" for n in notes if n not in row[-1]]
         if "changed outside" in row[-1]:
             problems.append(f"{name}: notes say changed outside: {row[-1]}")
-        res = json.load(open(os.path.join(out, name, "results.json")))
+        res = json.load(open(os.path.join(out, "students", name, "results.json")))
         if res["score"] != sum(grades) or [x["score"] for x in res["tests"] if x["name"] in names] != grades:
             problems.append(f"{name}: results.json {json.dumps(res)[:300]}")
         problems += [f"{name}: the message for {x['name']} does not name it: {x['output'][:200]}"
                      for x in res["tests"] if x["name"] in names and not x["score"] and x["name"] not in x["output"]]
-        if not os.path.isfile(os.path.join(out, name, "report.html")):
+        if not os.path.isfile(os.path.join(out, "students", name, "report.html")):
             problems.append(f"{name}: no report.html")
-        if f'href="{name}/report.html"' not in open(os.path.join(out, "index.html")).read():
+        if f'href="students/{name}/report.html"' not in open(os.path.join(out, "index.html")).read():
             problems.append(f"index.html has no link to {name}'s report")
     for p in problems:
         print(f"FAIL lab {lab}: {p}")
