@@ -12,6 +12,10 @@
                                                         # tree, in a copy of N whose Markdown keeps the
                                                         # answer spans, and in the copy COMMIT's
                                                         # exercise.sh writes (a tree before this check)
+    python3 scripts/check_answers.py --prove-leaks COMMIT NAME…
+                                                        # each exercise NAME's answer is found in the copy
+                                                        # of its lab that COMMIT writes (a tree that still
+                                                        # stated it: CTest answers_check_finds_old_leaks)
 
 The answers are declared in docs/solutions/answers.json (instructors only: copies leave
 docs/solutions/ out, `exercise.sh --left-out`): for each exercise, its lab and the forms its answer
@@ -228,10 +232,48 @@ def prove(commit, exercises):
     return 1 if problems else 0
 
 
+def prove_leaks(commit, names, exercises):
+    """Exit 0 when, for each exercise in names, the search finds its answer in the copy of its lab
+    that commit's exercise.sh writes: the forms declared for a leak catch the tree that had it."""
+    if os.path.exists(os.path.join(ROOT, ".student-copy")):
+        print("check_answers: this is a student copy: the proof runs in the complete project (skipped)")
+        return 77
+    unknown = [n for n in names if n not in exercises]
+    if unknown or not names:
+        fail(f"--prove-leaks: not exercises of answers.json: {' '.join(unknown) or '(none given)'}")
+    tmp = tempfile.mkdtemp(prefix="check-leaks-")
+    problems = 0
+    try:
+        old = os.path.join(tmp, "old")
+        os.makedirs(old)
+        archive = subprocess.run(f"git -C '{ROOT}' archive {commit} | tar -x -C '{old}'", shell=True, capture_output=True, text=True)
+        if archive.returncode != 0:
+            print(f"check_answers: commit {commit} is not in this clone (a shallow clone?): nothing to prove against (skipped)")
+            return 77
+        for lab in sorted({exercises[n]["lab"] for n in names}):
+            copy = os.path.join(tmp, f"copy{lab}")
+            subprocess.run(["bash", os.path.join(old, "scripts", "exercise.sh"), str(lab), "--out", copy],
+                           cwd=old, check=True, capture_output=True)
+            for n in sorted(n for n in names if exercises[n]["lab"] == lab):
+                hits = list(search(copy, [(n, f) for f in exercises[n]["forms"]]))
+                print(f"  {n} (lab {lab}) in the copy {commit} writes: "
+                      + (f"{len(hits)} found, e.g. {os.path.relpath(hits[0][0], copy)}:{hits[0][1]} ({hits[0][3]})" if hits
+                         else "FAIL, not found"))
+                problems += not hits
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    print(f"check_answers: {'FAIL: ' + str(problems) + ' leak(s) the forms do not catch' if problems else 'every leak of ' + commit + ' is caught'}")
+    return 1 if problems else 0
+
+
 def main(argv):
     if argv[:1] in (["-h"], ["--help"]):  # the docstring above, nothing run
         print(__doc__.strip())
         return 0
+    if argv and argv[0] == "--prove-leaks":
+        if len(argv) < 3:
+            fail("usage: check_answers.py --prove-leaks COMMIT NAME…")
+        return prove_leaks(argv[1], argv[2:], load_answers())
     if argv and argv[0] == "--prove":
         if len(argv) > 2:
             fail("usage: check_answers.py --prove [COMMIT]")

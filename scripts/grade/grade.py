@@ -7,7 +7,7 @@
 How a grade is made:
   * The pristine copy: the student copy of LAB (scripts/exercise.sh) with the lab's own folders
     replaced by the instructors' solved ones, configured and built once inside the sandbox at the
-    fixed path /grade/work, cached (--cache, default /tmp/grade-cache) under a key of the
+    fixed path /grade/work, cached (--cache, default ~/.cache/vulkan-labs-grade) under a key of the
     repository's HEAD and uncommitted changes; the cache keeps the newest two per lab (evict()).
   * Only the exercises count: from a submission the grader reads only the text between each
     `TODO EXERCISE name` (or `EXERCISE name`) line and its `END EXERCISE` line. Every other file is

@@ -95,11 +95,12 @@ TextureLevel downsample(const TextureLevel& in) {
 
 double fract(double x) { return x - std::floor(x); }
 
-}  // namespace
-
 // Albedo and emissive maps are colours, sRGB-encoded as image files store them; the specular map is
-// data, a factor in [0, 1]: byte / 255, no sRGB decoding.
+// data, a factor in [0, 1]: byte / 255, no sRGB decoding. (Internal: exercise texel_format's answer,
+// which a student copy's prebuilt library must not answer when called.)
 bool map_holds_colour(int binding) { return binding != 1; }
+
+}  // namespace
 
 namespace {
 // A material's map at `binding` (0 albedo, 1 specular, 2 emissive); empty: none.

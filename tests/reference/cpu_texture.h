@@ -6,7 +6,7 @@
 //   * its own mip chain: each level the box average of the one above in *linear* colour (a child
 //     texel is the mean over the parent area it covers: 2×2 for even sides, all three texels for
 //     3 → 1, overlap-weighted for 5 → 2), kept in double, never re-quantized;
-//   * each map decoded as map_holds_colour says: sRGB colour, or data (byte / 255, no decoding);
+//   * each map decoded as what it holds in the lighting equation: sRGB colour, or data (byte / 255);
 //   * texel centres at (i + ½)/size; wrap modes repeat, mirrored repeat, clamp to edge;
 //   * nearest: texel floor(u·w); linear: the 4 texels around u·w − ½, bilinear weights;
 //   * LOD λ = log2(ρmax) with ρ from *analytic* UV derivatives at the pixel (ray differentials,
@@ -39,11 +39,6 @@ struct RefTexture {
     std::vector<TextureLevel> levels;  // [0] = the image; one level without mipmaps
     bool fallback = false;             // the map could not be read: the magenta/black checkerboard
 };
-
-// Whether binding `binding` of a material's maps (lit.frag's set 1: 0 albedo, 1 specular, 2
-// emissive) holds colours, sRGB-encoded as image files store them, rather than plain numbers:
-// how the reference reads each map, and what exercise texel_format's formats must agree with.
-bool map_holds_colour(int binding);
 
 // 8-bit RGBA pixels → a texture (linear), with the mip chain down to 1×1 if `mipmaps`. `srgb`:
 // the RGB bytes are sRGB-encoded colour (else linear data, byte / 255); alpha is always linear.

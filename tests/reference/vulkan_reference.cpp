@@ -95,11 +95,6 @@ std::vector<std::string> comparison_sampler_problems(const VkSamplerCreateInfo& 
     return out;
 }
 
-VkFormat map_format(bool srgb_encoded) {
-    // The spec's "Conversion to RGBA": an _SRGB format applies the sRGB EOTF to R, G, B when read.
-    return srgb_encoded ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-}
-
 std::vector<float> texels_as_numbers(const lab::VulkanContext& vk, VkImage image, uint32_t width, uint32_t height) {
     // A nearest blit of the same size into a 32-bit float image converts through both formats
     // (the spec's "Copying Data Between Images"); the float image is copied to a buffer and read.

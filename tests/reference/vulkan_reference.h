@@ -28,13 +28,8 @@ std::vector<std::string> sampler_problems(const VkSamplerCreateInfo& got, const 
                                           float anisotropy, SamplerFields which);
 
 // What is wrong in `got` for lab 4's comparison sampler (a depth map read through compareEnable):
-// one line per field, as above. The lesson's rule is lit = 1 where the lookup's reference depth is
-// no farther than the stored one, and a lookup outside the map (clamp to border) is lit.
+// one line per field, as above: the rule is the lesson's (lab 4's README, exercise comparison_sampler).
 std::vector<std::string> comparison_sampler_problems(const VkSamplerCreateInfo& got);
-
-// The format a map is stored in: `srgb_encoded` for a colour map (its bytes sRGB-encoded, as image
-// files store them), else a data map (its bytes plain numbers): what the device must read them as.
-VkFormat map_format(bool srgb_encoded);
 
 // Level 0 of a 2D colour image (`width` × `height`, in SHADER_READ_ONLY_OPTIMAL, made with
 // TRANSFER_SRC usage) as the device converts its texels to numbers, RGBA floats row by row. The
