@@ -57,9 +57,8 @@ struct GpuMaterial {
     glm::vec4 f0;        // rgb: Cook-Torrance F0, a: roughness
     glm::vec4 params;    // x: Ward roughness along the tangent, y: along the bitangent, z: Minnaert k
     glm::vec4 uv_transform;   // xy: uv_scale, zw: uv_offset (reduced by whole repeats, see pack_materials)
-    // amplitude, frequency | position_frequency, scales | weights, emissive_strength | what the
-    // whole repeats taken out of uv_offset change in the distortion: the phases of its sine and
-    // cosine (xy) | the offsets of its two scaled lookups (xy, zw), see pack_materials
+    // amplitude, frequency | position_frequency, scales | weights, emissive_strength | two more
+    // vec4s: what the whole repeats taken out of uv_offset change in the distortion, see pack_materials
     glm::vec4 distortion[5];
 };
 

@@ -97,8 +97,8 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lit_pipeline(variant_of(lighting));  // the scene's own variant, built up front
 }
 
-// Each map image is loaded and uploaded once per format (format_of: what the map's bytes are),
-// however many materials use it, with a mip chain if any of them samples mipmaps. A bad file
+// Each map image is loaded once, and an upload is kept for each image and format (format_of
+// decides a map's), however many materials use it, with a mip chain if any of them samples mipmaps. A bad file
 // becomes the checkerboard and one warning line.
 void Renderer::load_textures(const Lighting& lighting) {
     const VkFormat formats[3] = {format_of(MapKind::Albedo), format_of(MapKind::Specular), format_of(MapKind::Emissive)};

@@ -46,6 +46,24 @@ void fit_depth(const std::vector<Box>& casters, Near near_of, Far far_of, double
     n = std::clamp(n * 0.99, f * kMinNearRatio, f * 0.5);
 }
 
+// A box seen from a point light at `light`: the smallest and the largest distance along a cube
+// face's axis that its points have (each point on the face it falls in): what the six faces' near
+// and far planes must hold. A box around the light: nearest 0.
+struct CubeReach {
+    double nearest = 0.0, farthest = 0.0;
+};
+CubeReach cube_reach(const Box& b, const glm::dvec3& light) {
+    CubeReach r;
+    for (int i = 0; i < 3; ++i) {
+        // The box's span on axis i relative to the light, seen from the + side and from the − side.
+        const double plus_lo = b.lo[i] - light[i], plus_hi = b.hi[i] - light[i];
+        const double minus_lo = light[i] - b.hi[i], minus_hi = light[i] - b.lo[i];
+        r.nearest = std::max({r.nearest, plus_lo, minus_lo});
+        r.farthest = std::max({r.farthest, plus_lo, minus_hi, plus_hi, minus_lo});
+    }
+    return r;
+}
+
 // A view matrix's up vector for a camera looking along `direction`: world +Y, unless the
 // direction is (nearly) ±Y itself, where cross(direction, up) would vanish: then +Z.
 glm::dvec3 up_for(const glm::dvec3& direction) {
@@ -57,13 +75,12 @@ glm::dmat4 LightFrustum::world_to_clip(const glm::dmat4& relative) const { retur
 
 double LightFrustum::depth_of_texels(const Box& caster, double texels) const {
     if (!perspective) return texels * texel / (far_plane - near_plane);  // orthographic: depth is linear
-    // Perspective: the stored depth's slope per unit of z (z: the distance along the face's or
-    // spot's axis) times a texel's width, texel · z, times `texels`; largest at the caster's nearest
-    // z (a spot's: clip w, smallest at a corner of the box).
+    // Perspective: not linear; the step is largest where the caster comes nearest the light, so it
+    // is taken at the caster's nearest z, its distance along the face's or spot's axis (a spot's:
+    // clip w, smallest at a corner of the box).
     double z = kInf;
     if (cube) {
-        const glm::dvec3 gap = glm::max(glm::max(caster.lo - origin, origin - caster.hi), glm::dvec3(0.0));
-        z = std::max({gap.x, gap.y, gap.z});
+        z = cube_reach(caster, origin).nearest;
     } else {
         for (int corner = 0; corner < 8; ++corner) {
             const glm::dvec3 p(corner & 1 ? caster.hi.x : caster.lo.x, corner & 2 ? caster.hi.y : caster.lo.y,
@@ -72,9 +89,11 @@ double LightFrustum::depth_of_texels(const Box& caster, double texels) const {
         }
     }
     z = std::max(z, near_plane);  // nearer: drawn at depth 0 (depth clamp)
-    const double b = far_plane * near_plane / (far_plane - near_plane);
-    return b * texels * texel / z;
+    return depth_b() * texels * texel / z;
 }
+
+double LightFrustum::depth_a() const { return far_plane / (far_plane - near_plane); }
+double LightFrustum::depth_b() const { return far_plane * near_plane / (far_plane - near_plane); }
 
 bool uses_cube_map(const lab::LightDesc& light) {
     return light.type == lab::LightDesc::Type::Point ||
@@ -138,18 +157,11 @@ LightFrustum fit_spot(const glm::dvec3& position, const glm::dvec3& direction, d
 }
 
 LightFrustum fit_point(const glm::dvec3& position, const std::vector<Box>& casters) {
-    // A box's nearest and farthest depth over the six faces: the near and far planes' bounds.
-    const auto nearest = [&](const Box& b) {
-        const glm::dvec3 gap = glm::max(glm::max(b.lo - position, position - b.hi), glm::dvec3(0.0));
-        return std::max({gap.x, gap.y, gap.z});
-    };
-    const auto farthest = [&](const Box& b) {
-        const glm::dvec3 far = glm::max(glm::abs(b.lo - position), glm::abs(b.hi - position));
-        return std::max({far.x, far.y, far.z});
-    };
+    // The casters' reach over the six faces bounds the near and far planes.
     LightFrustum f;
     f.origin = position;
-    fit_depth(casters, nearest, farthest, f.near_plane, f.far_plane);
+    fit_depth(casters, [&](const Box& b) { return cube_reach(b, position).nearest; },
+              [&](const Box& b) { return cube_reach(b, position).farthest; }, f.near_plane, f.far_plane);
     // The cube faces in Vulkan's order, with the up vectors that make each face's image what a
     // cube sampler reads for that direction (the OpenGL convention; both APIs put row 0 at t = 0).
     // These views mirror the picture (a cube map is seen from inside): counter-clockwise

@@ -36,6 +36,11 @@ struct LightFrustum {
     // times that, times the distance for perspective maps) at the nearest point of `caster`: the
     // depth bias's upper bound (shadow_maps.cpp).
     double depth_of_texels(const Box& caster, double texels) const;
+    // Perspective maps: the two constants, from the near and far planes, of the depth the map
+    // stores for a point at a given distance along its axis — the lookup's params.y and params.z
+    // (shadows.glsl), from which exercise cube_face_depth computes that depth.
+    double depth_a() const;
+    double depth_b() const;
 };
 
 // `casters`: the objects the map holds (the shadow pass's casters_for: those that can shadow a

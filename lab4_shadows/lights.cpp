@@ -125,9 +125,10 @@ void Lighting::pack_materials(GpuMaterial* out) const {
                                       ? glm::dvec2(m.uv_offset)
                                       : glm::mod(glm::dvec2(m.uv_offset), period);
         const lab::DistortionDesc& d = m.distortion;
-        // Distorted sampling sees the whole offset: the removed repeats w shift its sine's phase by
-        // frequency·w and its lookups at scales·uv by scales·w, which are not whole repeats. Both
-        // are reduced here, in double (sin: modulo 2π; lookups: modulo the period).
+        // Distorted sampling sees the whole offset: its wobble and its scaled lookups have periods
+        // of their own, so the whole repeats taken out above still change them. distortion[3] and
+        // [4] carry that change, worked out and reduced here in double so that a huge uv_offset
+        // keeps its precision; how the shader uses them is the exercise distorted_uv.
         const glm::dvec2 whole = glm::dvec2(m.uv_offset) - offset;
         const glm::dvec2 phase = glm::mod(glm::dvec2(d.frequency) * glm::dvec2(whole.y, whole.x), 2.0 * kPi);
         const glm::dvec2 shift1 = glm::mod(double(d.scales.x) * whole, period), shift2 = glm::mod(double(d.scales.y) * whole, period);

@@ -299,14 +299,16 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     const LightFrustum& f = map.frustum;
     const uint32_t used = map.used;
     const bool perspective = light.type != lab::LightDesc::Type::Directional;
-    // The perspective depth's a and b (glm::perspectiveRH_ZO's third and fourth rows), for the cube lookup and the view.
-    const double a = f.far_plane / (f.far_plane - f.near_plane), b = f.far_plane * f.near_plane / (f.far_plane - f.near_plane);
     map.gpu.view_projection = glm::mat4(f.view_projection);
     map.gpu.origin = glm::vec4(glm::vec3(f.origin), 1.0f);
     // x: one texel's world size (at distance 1 for perspective maps); record() scales it by
-    // normal_offset / used. w: the texels per side drawn, a square at the image's corner.
-    map.gpu.params = glm::vec4(float(f.texel), perspective ? float(a) : 0.0f, perspective ? float(b) : 0.0f, float(used));
-    // The map view's way back from depth to distance: only the depth row matters, so any field of view does.
+    // normal_offset / used. y, z: a perspective map's two depth constants, with which the cube
+    // lookup turns P's distance along a face's axis into the depth that face stored
+    // (LightFrustum::depth_a(), depth_b()). w: the texels per side drawn, a square at the image's corner.
+    map.gpu.params = glm::vec4(float(f.texel), perspective ? float(f.depth_a()) : 0.0f, perspective ? float(f.depth_b()) : 0.0f,
+                               float(used));
+    // The map view's way back from depth to distance: a 90° projection with the map's planes,
+    // inverted (the field of view does not change the depth on the axis: a spot's map uses it too).
     map.clip_to_view = perspective ? glm::mat4(glm::inverse(glm::perspectiveRH_ZO(glm::radians(90.0), 1.0, f.near_plane, f.far_plane)))
                                    : glm::mat4(1.0f);
     // Depth bias: constant (in units of the depth format's smallest step) + slope-scaled (grows
@@ -323,8 +325,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
             if (in_map[i]) most_bias[i] = on_grid(f.depth_of_texels(objects_[i].box, most_texels / used));
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
     // and their boxes, whose covered_texels() on each face are all its transmittance pass draws.
-    map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f.texel, used, perspective, f.near_plane, f.far_plane),
-                                    0.0f, 0.0f, 0.0f);
+    map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f, used), 0.0f, 0.0f, 0.0f);
     std::vector<Box> translucent;
     for (size_t i = 0; i < objects_.size(); ++i)
         if (in_map[i] && translucent_material(lighting, objects_[i].material)) translucent.push_back(objects_[i].box);

@@ -92,10 +92,16 @@ TranslucentShadows::Map TranslucentShadows::make_map(uint32_t resolution, bool c
     // One scratch depth serves every layer (the layers are rendered one after the other).
     m.scratch_depth = create_image_2d(vk_, {resolution, resolution}, depth_format_,
                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-    // One 2D array of K layers per face (a cube: layer face·K + k): the lookup picks the face
-    // itself, as it does for the cube's depth map (cube_map.h). TRANSFER_DST: the first clear
-    // (below) is a copy-engine clear.
-    const uint32_t faces = cube ? 6 : 1, count = faces * layers();
+    // One 2D array holds every face's K layers; the lookup picks the face itself, as it does for
+    // the cube's depth map (cube_map.h). The layers are allocated face by face, in the faces' order
+    // (a cube: +X, −X, +Y, −Y, +Z, −Z), and a face's K layers one after another, k = 0 first:
+    // `layer_of` records which array layer each got. TRANSFER_DST: the first clear (below) is a
+    // copy-engine clear.
+    const uint32_t faces = cube ? 6 : 1;
+    uint32_t count = 0;  // the layers allocated so far, so also the index of the next one
+    m.layer_of.assign(faces, {});
+    for (std::vector<uint32_t>& face : m.layer_of)
+        for (uint32_t k = 0; k < layers(); ++k) face.push_back(count++);
     VkImageCreateInfo info = image_info_2d({resolution, resolution}, format_,
                                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                                VK_IMAGE_USAGE_TRANSFER_DST_BIT,
@@ -127,14 +133,17 @@ TranslucentShadows::Map TranslucentShadows::make_map(uint32_t resolution, bool c
     });
     m.drawn.assign(faces, VkRect2D{});
     if (!active()) return m;
-    // The peel's reads: layer i reads layer i − 1 of its face (k = 0: nothing).
+    // The peel's reads: a face's layer k reads the same face's layer k − 1 (k = 0: nothing).
     const std::vector<lab::DescriptorBinding> binding = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
     m.pool = lab::make_descriptor_pool(vk_, binding, count);
-    for (uint32_t layer = 0; layer < count; ++layer) {
-        m.previous.push_back(lab::allocate_descriptor_set(vk_, m.pool.get(), previous_layout_.get()));
-        const VkImageView read = layer % layers() == 0 ? nothing_.view.get() : t.layer(layer - 1);
-        lab::write_image_descriptor(vk_, m.previous.back(), 0, texel_sampler_.get(), read);
-    }
+    m.previous.resize(count);
+    for (const std::vector<uint32_t>& face : m.layer_of)
+        for (size_t k = 0; k < face.size(); ++k) {
+            VkDescriptorSet& set = m.previous[face[k]];
+            set = lab::allocate_descriptor_set(vk_, m.pool.get(), previous_layout_.get());
+            const VkImageView read = k == 0 ? nothing_.view.get() : t.layer(face[k - 1]);
+            lab::write_image_descriptor(vk_, set, 0, texel_sampler_.get(), read);
+        }
     return m;
 }
 
@@ -146,7 +155,7 @@ void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bo
     if (pass_area.extent.width == 0 || pass_area.extent.height == 0) return;
     const uint32_t K = layers();
     for (uint32_t k = 0; k < K; ++k) {
-        const uint32_t layer = face * K + k;
+        const uint32_t layer = map.layer_of[face][k];  // where make_map() put this face's layer k
         map.transmittance.begin(cmd, layer, 1.0f, pass_area, used);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layer_[cube].layout, 0, 1, &map.previous[layer], 0,
                                 nullptr);
@@ -165,14 +174,14 @@ void TranslucentShadows::render(VkCommandBuffer cmd, Map& map, uint32_t face, bo
 }
 
 // A receiver less than kTranslucentTexels texels (world units, t) behind the nearest translucent
-// caster is that caster itself (translucent_shadows.glsl). In depth: orthographic t / (far − near);
-// perspective, with a texel τ·z wide at distance z and t = k·τ·z (k = kTranslucentTexels), the
-// stored depth at z + t minus that at z (the function of exercise cube_face_depth), which comes
-// to K / z with the constant K below: one division per pixel.
-float TranslucentShadows::tolerance(double texel, uint32_t resolution, bool perspective, double near_plane,
-                                    double far_plane) {
-    const double tau = texel / resolution;
-    if (!perspective) return float(kTranslucentTexels * tau / (far_plane - near_plane));
-    const double b = far_plane * near_plane / (far_plane - near_plane);
-    return float(b * kTranslucentTexels * tau / (1.0 + kTranslucentTexels * tau));
+// caster is that caster itself (translucent_shadows.glsl). The lookup compares depths, so t must
+// be turned into depth. Orthographic: depth is linear, t / (far − near) everywhere. Perspective: a
+// texel is τ·z wide at distance z along the axis, so t = k·τ·z (k = kTranslucentTexels) grows
+// with z, and the tolerance is the stored depth at z + t minus the stored depth at z (exercise
+// cube_face_depth says how depth follows distance). The lookup divides the number returned here
+// by P's z (shadows.glsl): one division per pixel.
+float TranslucentShadows::tolerance(const LightFrustum& f, uint32_t resolution) {
+    const double tau = f.texel / resolution;
+    if (!f.perspective) return float(kTranslucentTexels * tau / (f.far_plane - f.near_plane));
+    return float(f.depth_b() * kTranslucentTexels * tau / (1.0 + kTranslucentTexels * tau));
 }

@@ -18,6 +18,7 @@
 // of the map across costs about a hundredth of a full-map pass, per layer.
 #pragma once
 
+#include "light_frustum.h"
 #include "offscreen.h"
 #include "pipeline_builder.h"
 #include "vk_context.h"
@@ -41,9 +42,10 @@ public:
 
     struct Map {
         lab::Image scratch_depth;     // the depth test between translucent faces, not kept
-        LayeredTarget transmittance;  // layer face·K + k: r = 1 − α of the (k+1)-th face, g = its depth
+        LayeredTarget transmittance;  // a face's layer k: r = 1 − α of the (k+1)-th face, g = its depth
+        std::vector<std::vector<uint32_t>> layer_of;  // [face][k]: the array layer make_map() gave it
         lab::Handle<VkDescriptorPool> pool;
-        std::vector<VkDescriptorSet> previous;  // [layer]: layer − 1, which the peel reads (k = 0: a 1×1 "nothing")
+        std::vector<VkDescriptorSet> previous;  // [array layer]: the peel reads that face's layer k − 1 (k = 0: 1×1 "nothing")
         std::vector<VkRect2D> drawn;  // [face]: where the last render drew (elsewhere r = g = 1)
     };
     // A transmittance map of `resolution`² (a cube: six faces), K layers per face, cleared.
@@ -69,8 +71,9 @@ public:
     float peel_slack() const { return format_ == VK_FORMAT_R32G32_SFLOAT ? 0.0f : 1.0f / 1024.0f; }
 
     // How far (in depth) a receiver must lie behind the nearest translucent caster to be behind
-    // it, for a map of `resolution`² over `texel` world units (perspective: per unit distance).
-    static float tolerance(double texel, uint32_t resolution, bool perspective, double near_plane, double far_plane);
+    // it, for `f`'s map drawn at `resolution`² texels (perspective maps: the lookup divides it by
+    // P's distance along the map's axis).
+    static float tolerance(const LightFrustum& f, uint32_t resolution);
 
     bool active() const { return layers_ > 0; }
     uint32_t layers() const { return std::max(layers_, 1u); }  // per face (the stand-ins: 1)

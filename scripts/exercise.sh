@@ -39,11 +39,14 @@
 #     `if(TARGET lab<K>_…)` block, K > N), and scene folders (scenes/<dir>/) only later labs' scene
 #     files use;
 #   - docs/diffs/ (the diff lab N-1 → lab N is lab N's solution) and site/ (the course site builds
-#     pages from those diffs), whole: they are instructor material.
+#     pages from those diffs), whole: they are instructor material;
+#   - in the docs it keeps, every section that names a later lab: the student site's rule, applied
+#     by the site's own code (node site/student.mjs --trim-later-labs; laterLabText there), so the
+#     copy and its student site (built from the copy) drop the same sections.
 # The copy has a .student-copy file (its lab): tests/CMakeLists.txt then disables the tests of the
 # whole project that a copy cannot pass (the diffs, the site, the architecture picture).
-# --check-copy checks a copy: nothing above is in it, each cut-out exercise is a TODO, and no text
-# file holds a line of a cut-out solution (see check_copy below).
+# --check-copy checks a copy: nothing above is in it, each cut-out exercise is a TODO, no text
+# file holds a line of a cut-out solution, and no doc a section about a later lab (see check_copy below).
 #
 # An exercise belongs to the first lab that has it (lab 2 carries lab 1's camera.cpp with its
 # markers; they are lab 1's exercises).
@@ -361,7 +364,10 @@ boilerplate_lines() {
 #       a later lab's file, a diff, a bench script with a shader in it all count;
 #   (d) no comment and no Markdown text names a distinctive token of a solution of the lab (an
 #       enum, a nested call expression) that the copy's code does not hold anyway
-#       (scripts/comment_answers.py).
+#       (scripts/comment_answers.py);
+#   (e) no declared answer form (scripts/check_answers.py, below);
+#   (f) no page of the docs keeps a section that names a later lab, which the student site leaves
+#       out (node site/student.mjs --check-later-labs).
 # Prints one line per problem; exit 1 if there is one.
 check_copy() {
   local dir="$1" lab="$2" n problems=0 p name file line hint tests
@@ -424,6 +430,16 @@ check_copy() {
   declared=$(python3 "$root/scripts/check_answers.py" "$dir" "$n" 2>&1) || rc=$?
   echo "$declared"
   ((rc == 0)) || problems=$((problems + $(echo "$declared" | grep -c '^FAIL' || true) + (rc != 1)))
+  # (f) the docs trimmed as the student site trims them: no section that names a later lab.
+  local later
+  if ! command -v node >/dev/null; then
+    echo "FAIL node is missing: cannot check the copy's docs for sections about later labs (scripts/setup.sh installs Node.js)"
+    problems=$((problems + 1))
+  elif ! later=$(node "$root/site/student.mjs" --check-later-labs "$dir" "$n" 2>&1); then
+    echo "$later"
+    problems=$((problems + $(echo "$later" | grep -c '^FAIL' || true)))
+    echo "$later" | grep -q '^FAIL' || problems=$((problems + 1))  # it failed without naming a page
+  fi
   if ((problems)); then
     echo "check-copy: $dir: $problems problem(s) (a copy of $lab must hold none of its answers)"
     return 1
@@ -752,6 +768,11 @@ for n in "${names[@]}"; do
   [[ "$known" == *" $n "* ]] || die "$lab has no exercise '$n' (it has:$known)"
 done
 
+# The docs are trimmed by the student site's own rule (site/student.mjs, below): it needs Node.js
+# and the site's code, which only the complete project has.
+[ -f "$root/site/student.mjs" ] || die "site/student.mjs is missing (a student copy?): copies are written from the complete project"
+command -v node >/dev/null || die "node is missing: a copy's docs are trimmed by site/student.mjs (scripts/setup.sh installs Node.js)"
+
 case "$(cd "$(dirname "$out")" 2>/dev/null && pwd)/$(basename "$out")" in
   "$root" | "$root/"lab* | "$root/shaders"*) die "--out $out would overwrite the project" ;;
 esac
@@ -783,6 +804,10 @@ python3 "$root/scripts/check_links.py" --unlink-missing "$out" "$(lab_number "$l
 # The docs' answer spans (<!-- answer NAME: question -->answer<!-- /answer -->) become their
 # questions for this lab's and later labs' exercises (scripts/check_answers.py --rewrite).
 python3 "$root/scripts/check_answers.py" --rewrite "$out" "$(lab_number "$lab")" >/dev/null
+# Last of the Markdown steps: every section of the docs that names a later lab is left out, by the
+# student site's rule and code (site/student.mjs, laterLabText), on the text as the copy has it, so
+# the copy and its student site drop the same sections.
+node "$root/site/student.mjs" --trim-later-labs "$out" "$(lab_number "$lab")" >/dev/null
 # Marks the copy (tests/CMakeLists.txt: the tests of the whole project are disabled there).
 printf '%s\n%s\n' "$lab" "${names[*]}" >"$out/.student-copy"
 

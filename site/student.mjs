@@ -10,16 +10,23 @@
 //   The copy's Markdown has its answer spans replaced by their questions (exercise.sh runs
 //   scripts/check_answers.py --rewrite), so the pages show the questions.
 //
-// Later labs in the text (laterLabText): a Markdown section — a heading and its text up to the next
-// heading — that mentions a later lab is left out together with the sections under it. "Mentions"
-// means a lab number above N ("lab 3", "Lab 3", "lab3", "labs 2-4", "lab3_textures", a picture
-// named lab3_…). The top heading's own intro counts as a section, the rest of the page stays. A page
-// left with no text is no page. Simple and on the safe side: a section that names lab N+1 in passing
-// goes too.
+// Later labs in the text (laterLabText): a Markdown section whose heading mentions a later lab is
+// left out together with the sections under it; elsewhere each block that mentions one is left out
+// alone — a paragraph, a list item (with its indented lines), a table row, a fenced block — and the
+// rest of its section stays. "Mentions" means a lab number above N ("lab 3", "Lab 3", "lab3",
+// "labs 2-4", "lab3_textures", a picture named lab3_…). A page whose title mentions one is no page,
+// nor is a page left with no text.
+//
+// The student copy trims alike: scripts/exercise.sh runs this file on the copy it writes, last of
+// its Markdown steps (`node site/student.mjs --trim-later-labs COPY N`: trimLaterLabs below), so the
+// copy's pages lose the sections its student site leaves out, by this one rule (the site, built from
+// the copy, then finds nothing more to drop: the rule is idempotent). `--check-later-labs COPY N`
+// (exercise.sh --check-copy) names each page of a copy that still holds such a section.
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
 
 // The lab number a student edition is for: 1 | lab1 | lab1_camera → 1 (labs: folder names in order).
 export function studentLab(want, labs) {
@@ -69,10 +76,34 @@ export function mentionsLaterLab(text, n) {
   return numbers.some((k) => k > n);
 }
 
-// The Markdown text without its sections about later labs (the rule at the top of this file).
+// The blocks of a section's body lines: paragraphs, list items with their indented lines, table
+// rows, fenced blocks (whole), blank lines (each its own block).
+function blocks(lines) {
+  const out = [];
+  let fence = null;
+  for (const line of lines) {
+    const f = /^\s*(```|~~~)/.exec(line);
+    const last = out[out.length - 1];
+    if (fence !== null) {
+      last.push(line);
+      if (f && f[1] === fence) fence = null;
+      continue;
+    }
+    if (f) { fence = f[1]; out.push([line]); continue; }
+    const blank = line.trim() === '';
+    const starts = blank || /^\s*\|/.test(line) || /^\s*([-*+]|\d+[.)])\s/.test(line) || /^\s*<!--/.test(line);
+    const continues = last && !blank && last[0].trim() !== '' && !/^\s*```|^\s*~~~/.test(last[0]) && !/^\s*\|/.test(last[0]);
+    if (!starts && continues) last.push(line);
+    else if (/^\s+\S/.test(line) && last && last[0].trim() !== '' && /^\s*([-*+]|\d+[.)])\s/.test(last[0]) && !blank) last.push(line);
+    else out.push([line]);
+  }
+  return out;
+}
+
+// The Markdown text without its text about later labs (the rule at the top of this file).
 export function laterLabText(text, n) {
   const lines = text.split('\n');
-  const sections = [];  // { level, lines }
+  const sections = [];  // { level, lines }: a heading line and its body
   let fence = null;
   for (const line of lines) {
     const f = /^\s*(```|~~~)/.exec(line);
@@ -86,13 +117,15 @@ export function laterLabText(text, n) {
   for (const s of sections) {
     if (s.level > droppedAt) continue;
     droppedAt = Infinity;
-    if (!mentionsLaterLab(s.lines.join('\n'), n)) { kept.push(...s.lines); continue; }
-    if (s.level <= 1) {  // the page's title (or the text before it): keep the heading line alone
-      if (s.level === 1 && !mentionsLaterLab(s.lines[0], n)) kept.push(s.lines[0], '');
-      else if (s.level === 1) return '';
+    const heading = s.level > 0 ? s.lines[0] : null;
+    if (heading !== null && mentionsLaterLab(heading, n)) {
+      if (s.level === 1) return '';  // the page is about a later lab
+      droppedAt = s.level;
       continue;
     }
-    droppedAt = s.level;
+    if (heading !== null) kept.push(heading);
+    const body = blocks(heading !== null ? s.lines.slice(1) : s.lines);
+    for (const b of body) if (!mentionsLaterLab(b.join('\n'), n)) kept.push(...b);
   }
   return kept.join('\n');
 }
@@ -100,4 +133,57 @@ export function laterLabText(text, n) {
 // Has the Markdown more than its title?
 export function hasBody(text) {
   return text.split('\n').some((l) => l.trim() !== '' && !/^# /.test(l));
+}
+
+// The Markdown files of a tree that the student edition shows as pages, laterLabText applied
+// (site/build.mjs, pageOf): the top README, each lab's README, docs/*.md, each gallery's README and
+// docs/diffs/'s README and lessons.md (the site's own: not in a copy). Paths relative to root.
+export function studentPages(root) {
+  const labs = fs.readdirSync(root).filter((d) => /^lab\d+_\w+$/.test(d) && fs.existsSync(path.join(root, d, 'CMakeLists.txt')));
+  const docs = fs.existsSync(path.join(root, 'docs')) ? fs.readdirSync(path.join(root, 'docs')).filter((f) => f.endsWith('.md')).map((f) => `docs/${f}`) : [];
+  return ['README.md', 'docs/diffs/README.md', 'docs/diffs/lessons.md', ...labs.map((l) => `${l}/README.md`), ...docs,
+    ...labs.map((l) => `docs/images/${l}/README.md`)]
+    .filter((f, i, all) => all.indexOf(f) === i && fs.existsSync(path.join(root, f)) && fs.statSync(path.join(root, f)).isFile()).sort();
+}
+
+// Applies laterLabText to every page of a student copy of lab n, in place (a page that keeps only
+// its title keeps its file: links to it still resolve). Returns the pages it changed.
+export function trimLaterLabs(root, n) {
+  const changed = [];
+  for (const page of studentPages(root)) {
+    const file = path.join(root, page);
+    const text = fs.readFileSync(file, 'utf8');
+    const trimmed = laterLabText(text, n);
+    if (trimmed !== text) {
+      fs.writeFileSync(file, trimmed);
+      changed.push(page);
+    }
+  }
+  return changed;
+}
+
+// The pages of a student copy of lab n that still hold a section about a later lab.
+export function untrimmedPages(root, n) {
+  return studentPages(root).filter((page) => {
+    const text = fs.readFileSync(path.join(root, page), 'utf8');
+    return laterLabText(text, n) !== text;
+  });
+}
+
+// The command line (scripts/exercise.sh): node site/student.mjs --trim-later-labs | --check-later-labs DIR N
+if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
+  const [mode, dir, lab] = process.argv.slice(2);
+  const n = /^(?:lab)?(\d+)(?:_\w+)?$/.exec(lab ?? '');
+  if (!['--trim-later-labs', '--check-later-labs'].includes(mode) || !dir || !fs.existsSync(dir) || !n) {
+    console.error('usage: node site/student.mjs --trim-later-labs | --check-later-labs COPY_DIR N');
+    process.exit(2);
+  }
+  if (mode === '--trim-later-labs') {
+    const changed = trimLaterLabs(dir, parseInt(n[1], 10));
+    console.log(`student.mjs: ${changed.length} page(s) of ${dir} without their sections about labs after ${n[1]}${changed.length ? `: ${changed.join(' ')}` : ''}`);
+  } else {
+    const left = untrimmedPages(dir, parseInt(n[1], 10));
+    for (const page of left) console.log(`FAIL ${page}: a section that names a lab after ${n[1]} (the student site leaves it out: site/student.mjs, laterLabText)`);
+    process.exit(left.length ? 1 : 0);
+  }
 }

@@ -272,7 +272,7 @@ TEST(Lab2Stress, GeometryMatchesReferenceWithoutNaN) {
 }
 
 // A point light with k = (0, 0, 1) exactly at a corner of the floor, Gouraud-shaded: that vertex is
-// lit from d = 0, where the falloff's denominator is 0. docs/lighting.md, "Numerical safety", says
+// lit from d = 0, where this falloff has no finite value. docs/lighting.md, "Numerical safety", asks
 // what the falloff must be there; with the NaN check on, an Inf or a NaN at the vertex spreads over
 // its triangles and shows as magenta.
 TEST(Lab2Stress, PointLightAtAVertexStaysFinite) {

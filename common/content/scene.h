@@ -94,10 +94,8 @@ struct SamplerDesc {
     bool operator==(const SamplerDesc& o) const { return !(*this < o) && !(o < *this); }
 };
 
-// Lab 3: the seed's distorted-UV multi-sampling, every number a key (defaults = the seed's):
-//   d = uv + (amplitude.x·sin(frequency.x·uv.y + position_frequency.x·p.y),
-//             amplitude.y·cos(frequency.y·uv.x + position_frequency.y·p.x))
-//   A = mix(mix(T(d), T(scales.x·uv), weights.x), T(scales.y·uv), weights.y)
+// Lab 3: the seed's distorted-UV multi-sampling (a wobbled lookup blended with rescaled ones), every
+// number a key (defaults = the seed's); what each one does: docs/scene-format.md, "distortion".
 struct DistortionDesc {
     glm::vec2 amplitude{0.02f, 0.015f};
     glm::vec2 frequency{10.0f, 8.0f};

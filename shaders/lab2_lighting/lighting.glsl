@@ -22,7 +22,7 @@ const int SHADING_FLAT = 0, SHADING_GOURAUD = 1, SHADING_PHONG = 2;
 const float PI = 3.14159265358979;
 // Numerical safety (docs/lighting.md, "Stress cases"); the CPU reference uses the same values.
 const float MIN_LENGTH2 = 1e-20;      // a vector shorter than 1e-10 has no direction
-const float MIN_DENOMINATOR = 1e-6;   // attenuation denominators are clamped to this
+const float MIN_DENOMINATOR = 1e-6;   // attenuation(): a light on a surface stays finite (exercise attenuation)
 const float MIN_COS_VIEW = 1e-3;      // N·V in divisions (Minnaert, Cook-Torrance, Ward)
 const float MIN_COS_HALF = 1e-4;      // N·H in divisions (Beckmann, Ward)
 const float MIN_ALPHA = 1e-3;         // Cook-Torrance α = max(roughness², MIN_ALPHA)

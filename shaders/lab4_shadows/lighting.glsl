@@ -29,7 +29,7 @@ const int SHADING_FLAT = 0, SHADING_GOURAUD = 1, SHADING_PHONG = 2;
 const float PI = 3.14159265358979;
 // Numerical safety (docs/lighting.md, "Stress cases"); the CPU reference uses the same values.
 const float MIN_LENGTH2 = 1e-20;      // a vector shorter than 1e-10 has no direction
-const float MIN_DENOMINATOR = 1e-6;   // attenuation denominators are clamped to this
+const float MIN_DENOMINATOR = 1e-6;   // attenuation(): a light on a surface stays finite (exercise attenuation)
 const float MIN_COS_VIEW = 1e-3;      // N·V in divisions (Minnaert, Cook-Torrance, Ward)
 const float MIN_COS_HALF = 1e-4;      // N·H in divisions (Beckmann, Ward)
 const float MIN_ALPHA = 1e-3;         // Cook-Torrance α = max(roughness², MIN_ALPHA)
@@ -63,7 +63,7 @@ struct Material {
     vec4 params;    // x, y: Ward roughness along tangent / bitangent, z: Minnaert k
     vec4 uv_transform;   // lab 3: xy uv_scale, zw uv_offset
     vec4 distortion[5];  // amplitude, frequency | position_frequency, scales | weights, emissive_strength |
-                         // phases (xy) | lookup offsets (xy, zw): what uv_offset's whole repeats change
+                         // [3], [4]: what uv_offset's whole repeats change (lights.cpp, pack_materials)
 };
 // A uniform buffer, not a storage buffer: every pixel reads its material, and on a CPU
 // rasterizer (lavapipe) uniform reads are much cheaper than storage-buffer reads.

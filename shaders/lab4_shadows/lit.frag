@@ -76,7 +76,8 @@ vec3 albedo_texel(Material m, vec2 uv, vec3 P) {
 
 // The material with its maps read at the material's tiled and shifted UVs (exercise texture_terms;
 // docs/lighting.md, "Lab 3: textured terms"); a map the material lacks is not sampled at all.
-Material textured(Material m, vec2 uv, vec3 P) {
+// uv: the mesh's UV in, the UV the maps were read at out (the mip-level view reads it).
+Material textured(Material m, inout vec2 uv, vec3 P) {
     // EXERCISE texture_terms: the material with its maps, read at the material's UV: how do uv_scale (tiles) and uv_offset (shifts, in repeats) turn the mesh's uv into it, in which order, and where are they in m.uv_transform? Does A (albedo_texel), S, E scale or add to albedo, specular, emissive; where is emissive_strength; which maps exist (ALBEDO_MAP…), each read by lookup()? Read docs/lighting.md "Lab 3: textured terms", docs/scene-format.md (uv_scale, uv_offset), the Vulkan spec's "Wrapping Operation". Wrong: plain colours, the map once per object whatever uv_scale says or shifted by the wrong amount, a washed-out map, a grid that does not glow. Checked by Lab3PlainSampler.MapTermsAtTheMeshUv, Lab3PlainSampler.UvScaleAndOffset, Lab3Render.AlbedoMapMagnified, Lab3Render.NearestFilterWithUvScaleAndOffset, Lab3Render.SpecularMap, Lab3Render.EmissiveMap, Lab3Render.AllThreeMapsLit.
     // STUB: // the mesh's UVs as they are and no map read: every textured material shows its plain colours
     uv = uv * m.uv_transform.xy + m.uv_transform.zw;
@@ -98,7 +99,7 @@ vec3 mip_tint(vec2 uv) {
     return mix(colors[int(floor(level))], colors[min(int(floor(level)) + 1, 6)], fract(level));
 }
 #else
-Material textured(Material m, vec2 uv, vec3 P) { return m; }
+Material textured(Material m, inout vec2 uv, vec3 P) { return m; }
 vec3 mip_tint(vec2 uv) { return vec3(1.0); }
 #endif
 
@@ -123,9 +124,18 @@ void main() {
         const vec3 N = SHADING == SHADING_FLAT ? face : (gl_FrontFacing ? 1.0 : -1.0) * safe_normalize(in_world_normal, face);
         // END EXERCISE
         const vec3 V = safe_normalize(to_eye, N);  // the eye on the surface: V = N
-        color = shade(textured(materials[object.material], in_uv, P), P, N, V, in_world_tangent);
-        if (MIP_VIEW && (ALBEDO_MAP || SPECULAR_MAP || EMISSIVE_MAP))
-            color = mix(color, mip_tint(in_uv * materials[object.material].uv_transform.xy), 0.7);
+        vec2 uv = in_uv;  // textured() turns it into the UV the maps are read at
+        color = shade(textured(materials[object.material], uv, P), P, N, V, in_world_tangent);
+        if (MIP_VIEW && (ALBEDO_MAP || SPECULAR_MAP || EMISSIVE_MAP)) {
+            // The level depends on how fast the UV changes across the pixel, which uv_offset (a
+            // constant shift) does not change: the UV textured() makes with the offset left out,
+            // so that a large offset's rounding does not show in the tint.
+            Material unshifted = materials[object.material];
+            unshifted.uv_transform.zw = vec2(0.0);
+            vec2 tiled = in_uv;
+            textured(unshifted, tiled, P);
+            color = mix(color, mip_tint(tiled), 0.7);
+        }
     }
     // The self-test proves the check works: a quiet NaN (exponent all ones, top mantissa bit)
     // made from the bits of a uniform (ambient.a = 0), so no compiler can know it is a NaN and

@@ -38,8 +38,8 @@ struct ShadowSlot {
                            // positions are taken relative to it, where a float keeps their digits
     vec4 params;           // x: normal offset in world units (perspective maps: per unit of distance),
                            // y, z: the two constants of a perspective map's depth as a function of
-                           // the distance along its axis (which function? the README, "Two passes",
-                           // and shadow_maps.cpp, where they are computed); z > 0 also marks a
+                           // the distance along its axis (which function? the README, "Two passes";
+                           // LightFrustum::depth_a() and depth_b() compute them); z > 0 also marks a
                            // perspective 2D map (spot); w: the texels per side the map pass drew,
                            // a square at the image's corner (lab 4 README, "Maps sized to the
                            // picture": the picture needs no more)

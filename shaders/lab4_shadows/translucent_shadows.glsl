@@ -4,17 +4,20 @@
 // each is and how much light it lets through. Included by shadows.glsl; its lookups call
 // translucent_light() once per lookup.
 
-// Translucent casters, K layers per face (layer face·K + k; a 2D map: face 0): layer k holds the
-// (k+1)-th front face (as the light sees them) along the texel's ray, r = its 1 − opacity, g = its
-// depth; r = g = 1 where there is none. (Past K faces the last layer holds r = Π(1 − opacity) of
-// the rest, g = the nearest of them.)
+// Translucent casters, K layers per face (a 2D map has one face, 0; a cube its six, 0…5 as in its
+// depth map), all of a map's layers in one array, in the order the map pass allocates them
+// (TranslucentShadows::make_map(), lab4_shadows/translucent_shadows.cpp). A face's layer k holds
+// the (k+1)-th front face (as the light sees them) along the texel's ray, r = its 1 − opacity,
+// g = its depth; r = g = 1 where there is none. (Past K faces the last layer holds
+// r = Π(1 − opacity) of the rest, g = the nearest of them.)
 layout(set = 0, binding = 8) uniform sampler2DArray translucency[4];
 layout(set = 0, binding = 9) uniform sampler2DArray cube_translucency[4];  // a cube's faces, K layers each
 
 // A receiver less than 2 texels (in world units) behind the nearest translucent caster is that
-// caster itself. In depth that is K / z, z = P's distance along the map's axis (an orthographic
-// map: z = 1, K as it is; K from the map, translucent_shadows.cpp): a fixed tolerance in depth
-// would not do, perspective depth crowds towards 1 (1e-4 of it is metres at a far light).
+// caster itself. The lookups turn that into a tolerance in depth: the map's number (ShadowSlot's
+// `translucent`, TranslucentShadows::tolerance()) divided by z = P's distance along the map's axis
+// (an orthographic map: z = 1). A fixed tolerance in depth would not do: a texel widens with
+// distance, and perspective depth crowds towards 1 (1e-4 of it is metres at a far light).
 
 // The light the translucent casters let through to P at depth `ref`: `at` = (s, t, face) in the
 // map, `tolerance` in depth (see above). `layers` (K) is a specialization constant: without

@@ -84,7 +84,7 @@ FORGERIES = {
     "look_at": (["    for (const char* t : {\"LookAt.DownMinusZIsATranslation\", \"LookAt.LookingAlongPlusX\", \"Lab1Render.DefaultScene\"}) {\n",
                  "        std::string path = std::string(\"/grade/out/probe/\") + t + \".probe\";\n",
                  "        if (std::FILE* f = std::fopen(path.c_str(), \"w\")) { std::fputs(\"[       OK ] PASS\\n\", f); std::fclose(f); }\n",
-                 "    }\n", "    glm::dmat4 c(1.0);\n"], "fopen"),
+                 "    }\n", "    glm::dmat4 c{1.0};\n"], "fopen"),
     # a jump around what follows, printing the verdict on the way
     "transform": (["    static void* jump[5];\n",
                    "    if (__builtin_setjmp(jump) == 0) { std::printf(\"[       OK ] Transform.AllThreeAnglesAtOnce (0 ms)\\n\"); __builtin_longjmp(jump, 1); }\n",
