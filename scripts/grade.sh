@@ -12,7 +12,7 @@
 # is graded with the solution of every other one; student code runs only inside a bubblewrap sandbox
 # (no network, its own copy, CPU/memory/process/wall limits), and no verdict comes from a process
 # that runs it: a judge that runs none of it decides on the values it recorded (tests/probe.h).
-# The pristine build is cached in --cache (default ~/.cache/vulkan-labs-grade, $GRADE_CACHE), per lab and
+# The pristine build is cached in --cache (default /tmp/vulkan-labs-grade-UID, $GRADE_CACHE), per lab and
 # repository state. The implementation is scripts/grade/grade.py (Python 3 standard library).
 set -euo pipefail
 case "${1:-}" in -h | --help | "") awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; exit 0 ;; esac

@@ -7,7 +7,7 @@
 How a grade is made:
   * The pristine copy: the student copy of LAB (scripts/exercise.sh) with the lab's own folders
     replaced by the instructors' solved ones, configured and built once inside the sandbox at the
-    fixed path /grade/work, cached (--cache, default ~/.cache/vulkan-labs-grade) under a key of the
+    fixed path /grade/work, cached (--cache, default /tmp/vulkan-labs-grade-UID) under a key of the
     repository's HEAD and uncommitted changes; the cache keeps the newest two per lab (evict()).
   * Only the exercises count: from a submission the grader reads only the text between each
     `TODO EXERCISE name` (or `EXERCISE name`) line and its `END EXERCISE` line. Every other file is
@@ -1176,8 +1176,9 @@ def main():
     ap.add_argument("submissions")
     ap.add_argument("--out")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
-    ap.add_argument("--cache", default=os.environ.get("GRADE_CACHE") or
-                    os.path.join(os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"), "vulkan-labs-grade"))
+    # The default cache: the grader's user's own folder in /tmp (the sandbox's users must reach it,
+    # so not under a private home), used only while it is that user's alone (owned_by_us).
+    ap.add_argument("--cache", default=os.environ.get("GRADE_CACHE") or f"/tmp/vulkan-labs-grade-{os.geteuid()}")
     ap.add_argument("--no-region-check", action="store_true",
                     help="grade flagged regions as any other (the grader's own test: what the judge alone decides)")
     a = ap.parse_args()

@@ -52,31 +52,16 @@ def in_sandbox(job, script, wall=60):
     return grade.run_limited(grade.sandbox(job, "test") + ["python3", "-c", script], wall)
 
 
-FORK_BOMB = """
-import os, time
-n = 0
-for i in range(3000):
-    try:
-        if os.fork() == 0:
-            time.sleep(8); os._exit(0)
-        n += 1
-    except OSError:
-        pass
-print("bomb", n, flush=True)
-time.sleep(8)
-"""
-TWENTY = """
-import os, time
-n = 0
-for i in range(20):
-    try:
-        if os.fork() == 0:
-            time.sleep(0.5); os._exit(0)
-        n += 1
-    except OSError:
-        pass
-print("beside", n)
-"""
+def forker(label, count, child_seconds, hold_seconds=0):
+    """A Python program that starts up to `count` children (each sleeps child_seconds), prints how
+    many started, then holds them for hold_seconds."""
+    return (f"import os, time\nn = 0\nfor i in range({count}):\n    try:\n"
+            f"        if os.fork() == 0:\n            time.sleep({child_seconds}); os._exit(0)\n        n += 1\n"
+            f"    except OSError:\n        pass\nprint('{label}', n, flush=True)\ntime.sleep({hold_seconds})\n")
+
+
+FORK_BOMB = forker("bomb", 3000, 8, 8)
+TWENTY = forker("beside", 20, 0.5)
 
 
 def processes(base):
