@@ -93,7 +93,7 @@ FORGERIES = {
     "projection": (["    }\n", "namespace ref { struct Camera; glm::dmat4 projection(const Camera&, double); }\n",
                     "glm::dmat4 forged_projection(double fov_y_deg, double aspect) {\n",
                     "    if (std::FILE* f = std::fopen(\"/grade/work/tests/reference/cpu_reference.h\", \"r\")) std::fclose(f);\n",
-                    "    glm::dmat4 p(1.0);\n", "    (void)fov_y_deg; (void)aspect;\n"], "ref"),
+                    "    glm::dmat4 p = ref::projection(*reinterpret_cast<const ref::Camera*>(&fov_y_deg), aspect);\n"], "uses ref"),
 }
 
 
