@@ -48,7 +48,10 @@ import tempfile
 import unicodedata
 from bisect import bisect_right
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from course import exercises as course_exercises  # noqa: E402 (beside this file)
+
+ROOT = course_exercises.ROOT
 ANSWERS = os.path.join(ROOT, "docs", "solutions", "answers.json")
 SPAN = re.compile(r"<!-- answer ([a-z0-9_]+): (.*?) -->(.*?)<!-- /answer -->", re.S)
 SKIP_DIRS = {".git", "node_modules", "__pycache__"}
@@ -102,18 +105,9 @@ def load_answers():
 
 
 def listed_exercises():
-    """name → lab number, from exercise.sh --list (the markers in the labs' code)."""
-    out = subprocess.run(["bash", os.path.join(ROOT, "scripts", "exercise.sh"), "--list"], cwd=ROOT,
-                         capture_output=True, text=True, check=True).stdout
-    found, lab = {}, None
-    for line in out.splitlines():
-        m = re.match(r"^lab(\d+)_\w+:$", line)
-        if m:
-            lab = int(m.group(1))
-        m = re.match(r"^  (\S+)\s+\S+:\d+", line)
-        if m and lab is not None:
-            found[m.group(1)] = lab
-    return found
+    """name → lab number: every lab's own exercises, from the markers in the labs' code
+    (scripts/course/exercises.py; what `exercise.sh --list` lists)."""
+    return {e.name: e.number for e in course_exercises.all_exercises(ROOT)}
 
 
 def text_files(top):

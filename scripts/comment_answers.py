@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """comment_answers.py — does a student copy's prose (comments, Markdown) name a solution's tokens?
 
-    bash scripts/exercise.sh --solution-code LAB | python3 scripts/comment_answers.py COPY_DIR
+    python3 scripts/comment_answers.py COPY_DIR LAB
 
-exercise.sh --check-copy runs it. Reads the cut-out solutions (stdin: "name US kind US file:line
-US line", kind "solution" or "stub") and derives each exercise's distinctive tokens:
+exercise.sh --check-copy runs it. Takes the solutions a copy of LAB cuts out, LAB's own exercises'
+code and stubs, from this project's markers (scripts/course/exercises.py, solution_code) and
+derives each exercise's distinctive tokens:
   - identifiers that look like an API's constants or calls (VK_*, GL_*, names with an upper-case
     letter and an underscore, or an identifier followed by "("),
   - call expressions with a nested call, compared without whitespace (f(x, g(y))),
@@ -21,6 +22,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from check_links import outside_fences  # noqa: E402 (beside this file)
+from course import exercises  # noqa: E402
 
 CODE = (".cpp", ".h", ".hpp", ".glsl", ".vert", ".frag", ".comp")
 HASH = (".sh", ".py", ".cmake", ".txt")
@@ -124,22 +126,21 @@ def main(argv):
     if len(argv) > 1 and argv[1] in ("-h", "--help"):
         print(__doc__.strip())
         return 0
-    if len(argv) != 2 or not os.path.isdir(argv[1]):
-        print("comment_answers: usage: … | comment_answers.py COPY_DIR (a folder)", file=sys.stderr)
+    if len(argv) != 3 or not os.path.isdir(argv[1]):
+        print("comment_answers: usage: comment_answers.py COPY_DIR LAB (a folder and a lab: 2, lab2 or lab2_lighting)",
+              file=sys.stderr)
         return 2
     top = argv[1]
+    try:
+        lab = exercises.resolve_lab(argv[2])
+    except LookupError as e:
+        print(f"comment_answers: {e}", file=sys.stderr)
+        return 2
     solution, stub = {}, {}
-    for row in sys.stdin.read().split("\n"):
-        if not row:
-            continue
-        parts = row.split("\037")
-        if len(parts) != 4:
-            print(f"comment_answers: bad input line: {row[:80]}", file=sys.stderr)
-            return 2
-        name, kind, _, line = parts
+    for name, kind, _, line in exercises.solution_code(lab, only=True):
         (solution if kind == "solution" else stub).setdefault(name, []).append(line.split("//")[0])
     if not solution:
-        print("comment_answers: no solution lines on stdin: nothing to look for", file=sys.stderr)
+        print(f"comment_answers: {lab} has no solution lines: nothing to look for", file=sys.stderr)
         return 2
 
     files = []
@@ -165,11 +166,11 @@ def main(argv):
                 if e not in stub_bare and e not in code_bare:
                     tokens.setdefault(e, name)
     # A token the copy's own exercise hints name ("Read vkCmdBlitImage in the spec") is the hint,
-    # not the answer.
+    # not the answer: the text of every comment that holds a marker.
     hinted = set()
     for _, prose in split.values():
         for _, text in prose:
-            if "EXERCISE " in text:
+            if exercises.MARKER_RE.search("//" + text):
                 hinted |= set(IDENT.findall(text)) | {e for e in tokens if e in re.sub(r"\s+", "", text)}
     tokens = {t: n for t, n in tokens.items() if t not in hinted}
     words = {t: n for t, n in tokens.items() if "(" not in t}

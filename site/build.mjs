@@ -37,8 +37,10 @@ import { sourceBody } from './source_pages.mjs';
 import { studentLab, prepareStudentTree, laterLabText, hasBody } from './student.mjs';
 
 const usage = `usage: node site/build.mjs [--out DIR] [--student N]
-  --out DIR      where the site goes (default build/site, or build/site-student-labN)
-  --student N    the student edition of lab N (1, lab1 or lab1_camera): built from a student copy`;
+       node site/build.mjs --exercises LAB
+  --out DIR        where the site goes (default build/site, or build/site-student-labN)
+  --student N      the student edition of lab N (1, lab1 or lab1_camera): built from a student copy
+  --exercises LAB  print, as JSON, the exercises LAB's page lists (nothing is built)`;
 const siteDir = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(siteDir, '..');
 const args = process.argv.slice(2);
@@ -46,7 +48,7 @@ const die = (why) => { console.error(`make_site: ${why}`); process.exit(2); };
 if (args.includes('--help') || args.includes('-h')) { console.log(usage); process.exit(0); }
 const options = {};
 for (let i = 0; i < args.length; i++) {
-  if (!['--out', '--student'].includes(args[i])) die(`unknown argument '${args[i]}'\n${usage}`);
+  if (!['--out', '--student', '--exercises'].includes(args[i])) die(`unknown argument '${args[i]}'\n${usage}`);
   if (i + 1 >= args.length) die(`${args[i]} needs a value`);
   options[args[i].slice(2)] = args[++i];
 }
@@ -58,6 +60,10 @@ const labsIn = (dir) => fs.readdirSync(dir).filter((d) => /^lab\d+_\w+$/.test(d)
 let student = null;  // the lab number of the student edition
 let root = repo;     // where the pages' sources are read
 let cleanup = () => {};
+if (options.exercises !== undefined) {  // what a lab page's table lists (tests/exercise_tools_agree.py)
+  console.log(JSON.stringify(exercisesOf(options.exercises), null, 1));
+  process.exit(0);
+}
 if (options.student !== undefined) {
   if (fs.existsSync(path.join(repo, '.student-copy'))) die('this is a student copy: the student edition is built from the complete project');
   student = studentLab(options.student, labsIn(repo));
@@ -224,15 +230,11 @@ const labLink = (lab) => (lab ? { href: `${lab}.html`, label: titleOf(`${lab}/RE
 const labAt = (i) => labs[i] ?? null;
 
 // ---------------------------------------------------------------- labs and their exercises
-function exercisesOf(lab) {  // from the script's own listing: "  name  file:line  (tests: …)" + hint line
-  const listing = execFileSync('bash', [path.join(root, 'scripts/exercise.sh'), '--list', lab], { cwd: root, encoding: 'utf8' });
-  const lines = listing.split('\n');
-  const list = [];
-  lines.forEach((line, i) => {
-    const m = line.match(/^ {2}(\S+)\s+(\S+):(\d+)\s+\(tests: (.*)\)$/);
-    if (m) list.push({ name: m[1], file: m[2], line: m[3], tests: m[4] === 'none' ? [] : m[4].split(' '), hint: (lines[i + 1] ?? '').trim() });
-  });
-  return list;
+// A lab's exercises as its table shows them: `exercise.py --list --json LAB` (the markers, read by
+// scripts/course/exercises.py): [{ name, lab, file, line, hint, tests }], in the README's order.
+function exercisesOf(lab) {
+  const listing = execFileSync('python3', [path.join(root, 'scripts/exercise.py'), '--list', '--json', lab], { cwd: root, encoding: 'utf8' });
+  return JSON.parse(listing).map((e) => ({ ...e, hint: e.hint.trim() }));
 }
 const fileList = (page, files) => `<ul class="files">\n${files.map((f) =>
   `<li><a href="${relative(page, sourcePages.get(f))}"><code>${esc(f)}</code></a></li>`).join('\n')}\n</ul>`;

@@ -8,7 +8,7 @@
 //   node site/no_answers.mjs --out DIR --instructors N       # the instructors' edition against lab N's answers:
 //                                                            # it must report hits (the check can fail)
 //
-// For lab N, the answers are `bash scripts/exercise.sh --solution-lines labN`: the substantive lines of
+// For lab N, the answers are `bash scripts/exercise.sh --solution-lines --json labN`: the substantive lines of
 // the solutions of lab N's and every later lab's exercises, without whitespace. Every file of the
 // built edition that a browser shows as text (*.html, *.js, *.json, *.md, *.txt, *.csv, source
 // files) is read as the reader sees it — tags stripped, HTML entities decoded, whitespace removed,
@@ -63,8 +63,8 @@ for (const n of wanted) {
   const built = spawnSync(process.execPath, [path.join(siteDir, 'build.mjs'), '--out', dir, ...(instructors ? [] : ['--student', String(n)])],
     { encoding: 'utf8' });
   if (built.status !== 0) { console.log(`FAIL the ${instructors ? "instructors'" : `lab ${n} student`} edition did not build:\n${built.stderr}`); failed++; continue; }
-  const answers = execFileSync('bash', [path.join(root, 'scripts/exercise.sh'), '--solution-lines', lab], { cwd: root, encoding: 'utf8' })
-    .split('\n').filter(Boolean).map((l) => { const [name, where, code] = l.split('\x1f'); return { name, where, code }; });
+  const answers = JSON.parse(execFileSync('python3', [path.join(root, 'scripts/exercise.py'), '--solution-lines', '--json', lab],
+    { cwd: root, encoding: 'utf8' }));  // [{ name, where, code }]
   if (answers.length === 0) { console.log(`FAIL exercise.sh --solution-lines ${lab} gave no lines: nothing to look for`); failed++; continue; }
   const pages = files(dir);
   let hits = 0;
