@@ -488,7 +488,7 @@ int main(int argc, char** argv) {
         std::string verdict;
         double share = 1.0;
         if (!run.ok()) {
-            verdict = run.outcome() + ":\n" + run.log;
+            verdict = run.outcome() + ":\n" + shown_log(run.log, run.log_path);
         } else {
             const lab::Image8 actual = lab::read_png(run.png);
             // The reference is kBand pixels larger on every side (the same pixel grid, extended), so

@@ -42,6 +42,37 @@ struct RunResult {
     std::string log;     // stdout + stderr
 };
 
+// A lab's log as a failure message shows it: every line, but of the validation layer's messages
+// ("validation error: …", "validation warning: …", often 300 characters and more; one missing
+// barrier makes twenty) the first kShownMessages, each cut to kShownChars, then how many more there
+// are and where the whole log is (`log_path`). So the test's hint and the first message stay in view.
+inline std::string shown_log(const std::string& log, const std::string& log_path) {
+    constexpr int kShownMessages = 3;
+    constexpr std::size_t kShownChars = 200;
+    std::string shown;
+    std::size_t more_at = std::string::npos;  // where the count of the messages left out goes
+    int messages = 0;
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("validation ", 0) == 0) {
+            if (++messages > kShownMessages) {
+                if (more_at == std::string::npos) more_at = shown.size();
+                continue;
+            }
+            if (line.size() > kShownChars) {
+                std::size_t cut = kShownChars;
+                while (cut > 0 && (static_cast<unsigned char>(line[cut]) & 0xC0) == 0x80) --cut;  // whole UTF-8 characters
+                line = line.substr(0, cut) + " … (cut)";
+            }
+        }
+        shown += line + "\n";
+    }
+    if (more_at != std::string::npos)
+        shown.insert(more_at, "(" + std::to_string(messages - kShownMessages) + " more validation messages, " +
+                                  std::to_string(messages) + " in all, whole in the log: " + log_path + ")\n");
+    return shown;
+}
+
 // Where a test writes its pictures and logs: build/test_output/<sub>, or $LAB_TEST_OUTPUT/<sub>
 // (the exercises' grader, scripts/exercise.sh --prove, keeps its runs apart this way).
 inline std::string test_output_dir(const std::string& sub) {
@@ -126,9 +157,10 @@ struct RenderResult : RunResult {
         if (exit_code == 0 && !wrote_png) return lab + " exited 0 but wrote no PNG (" + png + ")";
         return lab + " exited " + std::to_string(exit_code);
     }
-    // Why the run is not ok(), for a failure message: the outcome, the command, the log.
+    // Why the run is not ok(), for a failure message: the outcome, the command, the log (shown_log()).
     std::string failure() const {
-        return outcome() + " on " + scene + "\n  command: " + command() + "\n  log (" + log_path + "):\n" + log;
+        return outcome() + " on " + scene + "\n  command: " + command() + "\n  log (" + log_path + "):\n" +
+               shown_log(log, log_path);
     }
 };
 

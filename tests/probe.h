@@ -67,7 +67,7 @@ inline std::string record_path() {
     return state().dir + "/" + name + ".probe";
 }
 
-// Called as each test starts (tests/exercise_hints.cpp's listener): a new record.
+// Called as each test starts (tests/exercise_hints_listener.cpp): a new record.
 inline void begin_test(const std::string& name) {
     State& s = state();
     s.test = name;

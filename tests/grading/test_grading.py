@@ -27,6 +27,9 @@ import tempfile
 import time
 import zipfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scripts"))
+from course import exercises  # noqa: E402  (the one model of an exercise)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 LAB = "lab1_camera"
 EXERCISES = ["look_at", "transform", "projection", "mode_switch", "orbit"]
@@ -50,16 +53,18 @@ def fail(msg):
 
 
 def region(lines, name):
-    marker = re.compile(r"// (TODO )?EXERCISE " + name + r": ")
-    start = next(i for i, l in enumerate(lines) if marker.search(l))
-    end = next(j for j in range(start + 1, len(lines)) if re.match(r"^[ \t]*// END EXERCISE[ \t]*$", lines[j]))
-    return start, end
+    """The marker's and END's indexes of exercise name in a file's lines (the course's one reader of
+    the markers, scripts/course/exercises.py)."""
+    found = exercises.find_region([l.rstrip("\n") for l in lines], name)
+    if found is None:
+        fail(f"no complete region {name}")
+    return found
 
 
 def solution(name):
     lines = open(os.path.join(ROOT, FILE_OF[name])).read().splitlines(keepends=True)
     s, e = region(lines, name)
-    return [l for l in lines[s + 1:e] if not re.match(r"^[ \t]*// STUB:", l)]
+    return [l for l in lines[s + 1:e] if not exercises.STUB_RE.match(l.rstrip("\n"))]
 
 
 def fill(sub, name, body):

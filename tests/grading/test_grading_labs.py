@@ -1,17 +1,17 @@
 #!/usr/bin/env python3
 """test_grading_labs.py — scripts/grade.sh on labs 2-4, two submissions each, made from a fresh
-student copy of the lab (CTest: grading_labs, label grading).
+student copy of the lab (CTest: grading_shader_regions, label grading, runs lab 2's "mixed").
 
     python3 tests/grading/test_grading_labs.py [--mixed-only] [LAB…]      # default: 2 3 4
 
-grading_lab1 (test_grading.py) holds the whole set of cases (attacks, archives, tampering, the
-regrade); this test shows the same grader on every other lab's exercises, C++ and shader regions:
+grading_lab1 (test_grading.py) holds the whole set of sandbox cases (attacks, archives, endless
+loops, tampering, the regrade) on lab 1, whose regions are all C++ in one file. This test adds what
+lab 1 cannot show: the same grader on a lab whose regions are shaders and C++ in several files:
   - "solved": every region the solution under a comment of the student's own, so no variant is the
     solution's text and each is built and run: every exercise 1;
-  - "mixed", packed as a .zip with the copy inside one folder: the first exercise does not compile,
-    the second is left as handed out, the lab's first C++ region after those two spins for ever
-    before the solution, the rest solved: 0, 0, 0 (with "did not compile" and "did not finish"),
-    then 1s. One broken region costs only its own point.
+  - "mixed", packed as a .zip with the copy inside one folder: the first exercise (a shader region
+    in labs 2 and 4) does not compile, the rest are solved: 0 with "did not compile", then 1s. One
+    broken region, even in a shader every picture compiles, costs only its own point.
 --mixed-only grades "mixed" alone (CTest's run: its solved regions are graded as in "solved").
 Checked for each lab: every grade cell, the notes, results.json, the report and the summary's link,
 and that nothing outside the grader's output folder changed (a canary folder, the submissions).
@@ -32,15 +32,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import test_grading as t  # noqa: E402  (region(), fill(), solution(), tree_hash(), the skip checks)
 
 ROOT = t.ROOT
-SPIN = "    { volatile bool spin = true; while (spin) {} }\n"
 
 
 def exercises(lab):
-    """The lab's exercises in its order, and each one's file (exercise.sh --list)."""
-    out = subprocess.run(["bash", os.path.join(ROOT, "scripts/exercise.sh"), "--list", lab], check=True,
-                         capture_output=True, text=True).stdout
-    found = [re.match(r"^  (\w+)\s+([^\s:]+):\d+\s", l) for l in out.splitlines()]
-    return [(m.group(1), m.group(2)) for m in found if m]
+    """The lab's exercises in its order, and each one's file (the course's model of an exercise)."""
+    return [(e.name, e.file) for e in t.exercises.exercises_of(t.exercises.resolve_lab(lab))]
 
 
 def grade_lab(tmp, lab, mixed_only):
@@ -49,10 +45,6 @@ def grade_lab(tmp, lab, mixed_only):
     names = [n for n, _ in ex]
     for n, f in ex:
         t.FILE_OF[n] = f
-    cpp = [n for n, f in ex[2:] if f.endswith(".cpp")]
-    if not cpp:
-        t.fail(f"lab {lab}: no C++ region after the first two exercises to spin in")
-    spin = cpp[0]
     base = os.path.join(tmp, f"lab{lab}")
     copy, subs, canary = (os.path.join(base, d) for d in ("copy", "submissions", "canary"))
     subprocess.run(["bash", os.path.join(ROOT, "scripts/exercise.sh"), lab, "--out", copy], check=True, capture_output=True)
@@ -67,16 +59,15 @@ def grade_lab(tmp, lab, mixed_only):
             t.fill(solved, n, [f"    // my own {n}\n"] + t.solution(n))
     mixed = os.path.join(base, "mixed-src", f"my-lab{lab}")
     shutil.copytree(copy, mixed, symlinks=True)
-    for n in names[2:]:
-        t.fill(mixed, n, ([SPIN] if n == spin else [f"    // my own {n}\n"]) + t.solution(n))
+    for n in names[1:]:
+        t.fill(mixed, n, [f"    // my own {n}\n"] + t.solution(n))
     t.fill(mixed, names[0], ["    float p = not_declared(1.0);\n"])  # an error in C++ and in GLSL alike
     with zipfile.ZipFile(os.path.join(subs, "mixed.zip"), "w") as z:
         for b, _, files in os.walk(mixed):
             for f in files:
                 z.write(os.path.join(b, f), os.path.relpath(os.path.join(b, f), os.path.dirname(mixed)))
     expected = {} if mixed_only else {"solved": ([1] * len(names), [])}
-    expected |= {"mixed": ([0, 0] + [0 if n == spin else 1 for n in names[2:]],
-                          [f"did not compile: {names[0]}", f"did not finish (a crash or the time limit): {spin}"])}
+    expected |= {"mixed": ([0] + [1] * (len(names) - 1), [f"did not compile: {names[0]}"])}
 
     before = (t.tree_hash(canary), t.tree_hash(subs))
     out = os.path.join(base, "out")
@@ -115,7 +106,7 @@ def grade_lab(tmp, lab, mixed_only):
             problems.append(f"index.html has no link to {name}'s report")
     for p in problems:
         print(f"FAIL lab {lab}: {p}")
-    print(f"grading_labs: lab {lab}: {'FAILED' if problems else 'every grade as expected, nothing outside changed'}"
+    print(f"grading_shader_regions: lab {lab}: {'FAILED' if problems else 'every grade as expected, nothing outside changed'}"
           f" (grading {time.time() - t1:.0f} s, {time.time() - t0:.0f} s in all)")
     print(open(os.path.join(out, "grades.csv")).read())
     return not problems
@@ -124,7 +115,7 @@ def grade_lab(tmp, lab, mixed_only):
 def main():
     mixed_only = "--mixed-only" in sys.argv[1:]
     labs = [a for a in sys.argv[1:] if a != "--mixed-only"] or ["2", "3", "4"]
-    t.skip_unless_gradable("grading_labs")
+    t.skip_unless_gradable("grading_shader_regions")
     tmp = tempfile.mkdtemp(prefix="grade-labs-test-")
     os.chmod(tmp, 0o755)
     try:
