@@ -12,8 +12,8 @@
 #
 # Needs node and site/node_modules: scripts/setup.sh installs Debian's nodejs and npm and runs
 # `npm ci` in site/ (the versions pinned in site/package.json and site/package-lock.json).
-# CTest site_browser (site/check.mjs) builds both editions and checks every page in headless
-# Chromium; site_student_no_answers (site/no_answers.mjs) checks no student page holds an answer.
+# CTest site_browser (site/check.mjs) builds both editions, reads every page's HTML and opens a
+# sample of every kind of page in headless Chromium; site_student_no_answers (site/no_answers.mjs) checks no student page holds an answer.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 usage() { awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; }
