@@ -22,19 +22,18 @@ tmp=$(mktemp -d /tmp/grade-bench-XXXXXX)
 chmod 755 "$tmp"
 trap '[ -n "$keep" ] && rm -rf "$keep" && cp -a "$tmp" "$keep"; rm -rf "$tmp"' EXIT
 bash "$root/scripts/exercise.sh" "$lab" --out "$tmp/copy" >/dev/null
-bash "$root/scripts/exercise.sh" --list "$lab" > "$tmp/list"
-python3 - "$root" "$tmp" <<'PY'
-import os, re, shutil, sys
-root, tmp = sys.argv[1], sys.argv[2]
+python3 - "$root" "$tmp" "$lab" <<'PY'
+import os, shutil, sys
+root, tmp, lab = sys.argv[1], sys.argv[2], sys.argv[3]
 sys.path.insert(0, os.path.join(root, "tests", "grading"))
+sys.path.insert(0, os.path.join(root, "scripts", "grade"))
+import model
 import test_grading as t
-# the lab's exercises and their files, in the lab's order (exercise.sh --list: "  name  file:line  (tests: …)")
+# the lab's exercises and their files, in the lab's order (the course's model of an exercise)
 ex = []
-for line in open(os.path.join(tmp, "list")):
-    m = re.match(r"^  (\w+)\s+([^\s:]+):\d+\s", line)
-    if m:
-        t.FILE_OF[m.group(1)] = m.group(2)
-        ex.append(m.group(1))
+for e in model.exercises_of(model.resolve_lab(lab)):
+    t.FILE_OF[e["name"]] = e["file"]
+    ex.append(e["name"])
 os.makedirs(os.path.join(tmp, "class"))
 mix = {f"s{i:02d}": ex for i in range(1, 7)}
 mix.update({"s07": ex[:2], "s08": ex[:-2], "s09": ex, "s10": []})
