@@ -1,5 +1,6 @@
-# check_labels.cmake — every CTest test carries exactly one of the course's labels.
-#   cmake -DCTEST=ctest -DBUILD_DIR=build -DLABELS="common;lab1;..." -P check_labels.cmake
+# check_labels.cmake — every CTest test carries exactly one of the course's labels, and besides it
+# at most the audience label AUDIENCE (`instructors`: a test a student copy disables).
+#   cmake -DCTEST=ctest -DBUILD_DIR=build -DLABELS="common;lab1;..." -DAUDIENCE=instructors -P check_labels.cmake
 cmake_minimum_required(VERSION 3.22)
 # Reads the test list as CTest sees it (gtest cases included) and names each offender.
 execute_process(COMMAND ${CTEST} --test-dir ${BUILD_DIR} --show-only=json-v1
@@ -33,6 +34,9 @@ foreach(i RANGE ${last})
       endif()
     endforeach()
   endif()
+  if(DEFINED AUDIENCE)
+    list(REMOVE_ITEM labels ${AUDIENCE})
+  endif()
   list(LENGTH labels nlabels)
   if(NOT nlabels EQUAL 1 OR NOT labels IN_LIST LABELS)
     list(APPEND bad "${name} [${labels}]")
@@ -42,4 +46,4 @@ if(bad)
   string(REPLACE ";" "\n  " bad "${bad}")
   message(FATAL_ERROR "tests without exactly one label of ${LABELS}:\n  ${bad}")
 endif()
-message(STATUS "${count} tests, each labelled one of ${LABELS}")
+message(STATUS "${count} tests, each labelled one of ${LABELS} (and at most ${AUDIENCE})")

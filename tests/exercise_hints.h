@@ -16,7 +16,7 @@ struct Hint {
     std::string summary;  // one line for a program's summary of failing tests, no '\n'
 };
 
-// The hint for failing test `test` (Suite.Test, or a CTest name such as lab4_smoke_stress);
+// The hint for failing test `test` (Suite.Test, or a CTest name such as lab4_smoke_animated);
 // `pictures`: the folder it wrote its pictures to, "" for none. Reads the manifest once per process;
 // when it cannot, the hint is one line saying why.
 Hint hint(const std::string& test, const std::string& pictures);

@@ -9,6 +9,7 @@
 //                      [--fit-to-view] [--keep]
 //
 // --seeds: the listed seeds alone (CTest's lab4_random_scenes_regressions: seeds that failed once).
+// LAB_FAIL_FAST (set, by the grader's proof): stop at the first failing seed.
 // --translucent-stacks: another kind of scene from the same seeds (generate_stacks(), below): 2-4
 // translucent objects over each other on screen and in the light's view — slabs stacked one over
 // part of the next (translucent receivers under translucent casters, points between two layers),
@@ -50,6 +51,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -466,6 +468,7 @@ int main(int argc, char** argv) {
     const std::string dir = test_output_dir("lab4_random");
     fs::create_directories(dir);
     int failed = 0;
+    const bool fail_fast = std::getenv("LAB_FAIL_FAST") != nullptr;
     double worst_share = -1.0;
     std::string worst;
     const auto start = std::chrono::steady_clock::now();
@@ -557,6 +560,10 @@ int main(int argc, char** argv) {
             for (const std::string& file : {run.png, run.log_path}) fs::remove(file, ec);
         }
         std::fflush(stdout);
+        if (failed && fail_fast) {  // the grader's proof asks whether the shard fails, not how often
+            std::printf("lab4_random_scenes: LAB_FAIL_FAST set: stopped at the first failing seed\n");
+            break;
+        }
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("lab4_random_scenes: %d of %d %s (seeds %llu..%llu) within %.1f %% wrong side; worst %.4f %%: %s; %.1f s\n",

@@ -10,8 +10,10 @@ own run module: the same scheduler (two jobs at a time, the costliest first, bui
 beside them one test that mostly waits: light_tests()), the same limits and process-group killing,
 the same reading of a test's ending and of the exercise its message names. Every submission's
 tests share the scheduler, so one's builds and tests fill the time another's leave.
-It runs the whole CTest label of LAB, every test with its own command, environment, working
-folder, timeout and skip code, seeing the variant's lab (prepare()). Then for each exercise e:
+It runs the CTest label of LAB as a student copy has it (without the tests labelled
+`instructors`, which a copy disables and the class grader never runs), every test with its own
+command, environment, working folder, timeout and skip code, seeing the variant's lab (prepare()).
+Then for each exercise e:
   (a) at least one test fails with e stubbed, and every failing test's message names e first (the
       gtests' hint, tests/exercise_hints.cpp, or tests/with_exercise_hint.sh's for the others);
   (b) every row of tests/graded_exercises.txt that lists e matches only tests that failed: the
@@ -21,10 +23,12 @@ folder, timeout and skip code, seeing the variant's lab (prepare()). Then for ea
       by") that failed in (a) passes: the test isolates e.
 A test whose result cannot differ between two variants runs once (LabelVariants.deps): a gtest
 program that reads no lab (it never names LAB_EXE_DIR or LAB_SHADER_DIR) built the same.
-Two tests run shorter than in the label: the random scenes RANDOM_SEEDS seeds a shard (each seed
-so kept fails for every exercise whose stub fails that shard), and a soak SOAK_MINUTES, its crash,
+Some tests run shorter than in the label: the random scenes RANDOM_SEEDS seeds a shard (each seed
+so kept fails for every exercise whose stub fails that shard), a soak SOAK_MINUTES, its crash,
 hang and validation checks kept but not its memory gate (SOAK_MEMORY_GATE=0: a stub changes what
-is drawn, not what is kept; the label's own soak gates memory).
+is drawn, not what is kept; the label's own soak gates memory), and a test of many cases (the
+random scenes) stops at its first failing one (LAB_FAIL_FAST=1): the proof asks
+whether a test fails and what it names, not how often.
 
 Prints per exercise how many tests failed and whether each named it; writes the measurement to
 BUILD/grader/LAB.measured, each run's results (test, status, exercise named, seconds, CPU seconds,
@@ -141,7 +145,7 @@ def prepare(test, build, lab, vdir, fake, out):
     if soak and test.name.endswith("_soak"):
         cmd[soak[0] + 1] = SOAK_MINUTES
         env.update(SOAK_MEMORY_GATE="0", SOAK_MIN_SAMPLES="1")
-    env.update(LAB_EXE_DIR=bin_dir, LAB_SHADER_DIR=os.path.join(vdir, "shaders", lab),
+    env.update(LAB_FAIL_FAST="1", LAB_EXE_DIR=bin_dir, LAB_SHADER_DIR=os.path.join(vdir, "shaders", lab),
                LAB_EXERCISE_MANIFEST=os.path.join(vdir, "exercises.json"),
                LAB_TEST_OUTPUT=os.path.join(out, "test_output", safe(test.name)))
     return cmd, env
@@ -318,7 +322,7 @@ class Proof:
         open(self.log_path, "w").close()
         os.makedirs(os.path.join(self.g, "runs"), exist_ok=True)
         self.say(f"grader: {self.lab}, {len(self.exercises)} exercises, each stubbed alone against every test of label "
-                 f"{self.short}; building in {self.g}")
+                 f"{self.short} that a copy runs; building in {self.g}")
         tests = [t for t in label_tests(self.build, self.short) if t.command and not t.disabled]
         history = self.read_history()
         with Scheduler(self.jobs, light=1) as scheduler:
