@@ -30,6 +30,7 @@ packages=(
   python3-matplotlib python3-numpy  # bench/tradeoff.py: time-against-error plots
   chromium                     # the course site's browser test (site/check.mjs, CTest site_browser)
   bubblewrap                   # scripts/grade.sh runs student code in its sandbox (bwrap)
+  ccache                       # scripts/grade.sh: the pristine copy's second build reuses the first's objects
 )
 # Node.js and npm build the course site (scripts/make_site.sh): Debian's, unless a node and an npm
 # are already installed (another nodejs package, such as NodeSource's, conflicts with Debian's npm).

@@ -7,7 +7,7 @@ A synthetic class made from the model: one submission per exercise e of LAB with
 submissions). Each is a variant built from BUILD's `<target>_graded` targets (variants.GradedBuild:
 object reuse, one at a time in BUILD/grader/, queued at the start) and run through the grader's
 own run module: the same scheduler (two jobs at a time, the costliest first, builds first, and
-beside them one test that mostly waits: light_tests()), the same limits and process-group killing,
+beside them two tests that mostly wait: light_tests()), the same limits and process-group killing,
 the same reading of a test's ending and of the exercise its message names. Every submission's
 tests share the scheduler, so one's builds and tests fill the time another's leave.
 It runs the CTest label of LAB as a student copy has it (without the tests labelled
@@ -57,20 +57,21 @@ from variants import GradedBuild, VariantCache
 RANDOM_SEEDS = 5      # seeds per random-scene shard in the proof (the label runs 40-50)
 SOAK_MINUTES = "0.25"  # a soak's length in the proof (the label's: 1, lab 4's 3)
 BUILD_FIRST = float("inf")  # a build's place in the scheduler: before every test
-LIGHT_SECONDS, LIGHT_SHARE = 5.0, 0.6  # a light test: light_tests()
+LIGHT = 2  # light tests (light_tests()) the scheduler runs beside its two jobs
+WINDOW_DRIVERS = ("xvfb-run", "window_smoke.sh", "soak.py")  # what runs a lab in a window and drives it
 SO_FAR = "\0so-far\0"     # in a line to print: the seconds since the proof started
 
 
-def light_tests(history):
-    """The tests that mostly wait (a window test between its inputs): in the last proof (history:
-    test → {seconds, cpu}) they took LIGHT_SECONDS or more and their CPU seconds per second were
-    under LIGHT_SHARE of the median test's (a share, so that a loaded machine, which lowers every
-    test's, does not make a test light). The scheduler runs one of them beside its two jobs."""
-    shares = sorted(h["cpu"] / h["seconds"] for h in history.values() if h["seconds"] >= 1)
-    if not shares:
-        return set()
-    median = shares[len(shares) // 2]
-    return {n for n, h in history.items() if h["seconds"] >= LIGHT_SECONDS and h["cpu"] / h["seconds"] < LIGHT_SHARE * median}
+def light_tests(tests):
+    """The tests that mostly wait: a lab in a window, driven by inputs with pauses between them
+    (their commands name WINDOW_DRIVERS, or gpu_passes.py's `window`). Measured alone, as user +
+    system time against wall time: a soak 0.48 of a core, window_on_demand 0.30, a window smoke
+    0.47, gpu_passes_window 0.59. A rule, not the last proof's timings, so that a fresh build (no
+    timings yet) runs them beside the two jobs as well: LIGHT of them at a time."""
+    def drives_window(t):
+        cmd = [os.path.basename(a) for a in t.command]
+        return any(a in WINDOW_DRIVERS for a in cmd) or ("gpu_passes.py" in cmd and cmd[-1] == "window")
+    return {t.name for t in tests if drives_window(t)}
 
 
 def safe(name):
@@ -166,7 +167,7 @@ class LabelVariants(VariantCache):
         self.builder = GradedBuild(build, lab, log_path)
         # a test's cost: its seconds in the last proof, else its timeout; light: light_tests()
         self.costs = {n: h["seconds"] for n, h in history.items()}
-        self.light = light_tests(history)
+        self.light = light_tests(tests)
         self.names = {}         # sources' key → the run's name
         self.builds = {}        # sources' key → Future of the build: (None or why it failed, seconds)
         self.done = {}          # (test, sources' key or deps) → (result, the run it came from)
@@ -325,10 +326,10 @@ class Proof:
                  f"{self.short} that a copy runs; building in {self.g}")
         tests = [t for t in label_tests(self.build, self.short) if t.command and not t.disabled]
         history = self.read_history()
-        with Scheduler(self.jobs, light=1) as scheduler:
+        with Scheduler(self.jobs, light=LIGHT) as scheduler:
             self.variants = LabelVariants(self.build, self.lab, tests, scheduler, os.path.join(self.g, "runs"), self.log_path, history)
             with open(self.log_path, "a") as f:
-                f.write(f"grader: light tests (one runs beside the two jobs): {' '.join(sorted(self.variants.light)) or 'none'}\n")
+                f.write(f"grader: light tests ({LIGHT} run beside the two jobs): {' '.join(sorted(self.variants.light)) or 'none'}\n")
             self.tests = tests
             self.prove_all()
         self.write_history(history)

@@ -28,6 +28,7 @@ WORK = "/grade/work"   # where a copy is seen inside the sandbox (its build has 
 OUT = "/grade/out"     # the tests' output folder inside the sandbox (LAB_TEST_OUTPUT)
 PROBE = "/grade/probe" # the judge's read-only view of the probe's records (tests/probe.h)
 MANIFEST = "/grade/exercises.json"  # the judge's view of the variant's exercises' manifest (its hints')
+CCACHE = "/grade/ccache" # the pristine builds' compiler cache (compiler_cache=)
 # As root, each job's sandbox runs as a user of its own, SANDBOX_UID + the job's number (no account
 # needs to exist for it): RLIMIT_NPROC counts the processes and threads of a user, so a fork bomb in
 # one job exhausts its own user's count, never that of a job running beside it; and no job can
@@ -45,10 +46,12 @@ def job_uid(job):
     return SANDBOX_UID + (int(m.group(1)) if m else 0)
 
 
-def sandbox(job, mode, env=None, cpu=600, shared=None, work=None, binds=()):
+def sandbox(job, mode, env=None, cpu=600, shared=None, work=None, binds=(), compiler_cache=None):
     """The command prefix that runs a command in job's copy. mode: build | test | setup. shared:
     the pristine copy whose build/common (never rebuilt by a submission) is seen read-only. work:
-    another tree to see read-only at WORK (the judge's); binds: (path, place) pairs seen read-only."""
+    another tree to see read-only at WORK (the judge's); binds: (path, place) pairs seen read-only.
+    compiler_cache: a folder seen writable at CCACHE as ccache's (the pristine copy's two builds,
+    instructors' code only); without it ccache, where a build names it, only runs the compiler."""
     work = work or os.path.join(job, "work")
     cmd = []
     if os.geteuid() == 0:
@@ -75,6 +78,11 @@ def sandbox(job, mode, env=None, cpu=600, shared=None, work=None, binds=()):
         cmd += ["--ro-bind", path, place]
     cmd += ["--chdir", WORK]
     base = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", "TMPDIR": "/tmp"}
+    if compiler_cache:
+        cmd += ["--bind", compiler_cache, CCACHE]
+        base["CCACHE_DIR"] = CCACHE
+    else:
+        base["CCACHE_DISABLE"] = "1"  # ccache's switch: set at all, it runs the compiler alone
     if os.environ.get("LP_NUM_THREADS"):
         base["LP_NUM_THREADS"] = os.environ["LP_NUM_THREADS"]
     base.update(env or {})

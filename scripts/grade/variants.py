@@ -55,6 +55,12 @@ def owned_by_us(path):
 
 CONFIGURE = ["cmake", "-S", ".", "-B", "build", "-DCMAKE_BUILD_TYPE=RelWithDebInfo",
              "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -DNDEBUG", "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -DNDEBUG"]
+# The pristine copy is built twice, solved and as handed out (the judge), and both builds compile
+# the same common/ and test files with the same flags at the same path (WORK): ccache, where it is
+# installed, compiles each of them once. It keys an object on the preprocessed source and the
+# flags, so a stub never gets the solution's object. Submissions' builds never use it.
+if shutil.which("ccache"):
+    CONFIGURE += ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
 
 
 def pristine(lab, cache_root, jobs):
@@ -76,8 +82,12 @@ def pristine(lab, cache_root, jobs):
     t0 = time.time()
     log(f"grade: writing the student copy of {lab} and building the pristine copy in {tmp} (once per lab and commit)")
     write_copy(lab, tmp)
-    tests = build_solved(lab, tmp, jobs)
-    build_judge(lab, tmp, tests, jobs)
+    cache = os.path.join(tmp, "ccache")
+    os.makedirs(cache)
+    chown_tree(cache)
+    tests = build_solved(lab, tmp, jobs, cache)
+    build_judge(lab, tmp, tests, jobs, cache)
+    shutil.rmtree(cache)
     if os.geteuid() == 0:  # the cache is the grader's: no sandbox may change it
         subprocess.run(["chown", "-R", "-h", "0:0", os.path.join(tmp, "work"), os.path.join(tmp, "judge", "work")], check=True)
     open(os.path.join(tmp, "done"), "w").write(f"built in {time.time() - t0:.0f} s\n")
@@ -106,12 +116,13 @@ def write_copy(lab, tmp):
     chown_tree(work)
 
 
-def build_solved(lab, tmp, jobs):
-    """Configures and builds tmp/work in the sandbox; writes and returns its tests (tests.json)."""
+def build_solved(lab, tmp, jobs, cache):
+    """Configures and builds tmp/work in the sandbox (cache: the compiler's); writes and returns its
+    tests (tests.json)."""
     work = os.path.join(tmp, "work")
     # The students' build type (scripts/setup.sh), without its -g: GCC makes the same code with and
     # without debug information, and without it every variant copies and links fewer bytes.
-    code, out = run_limited(sandbox(tmp, "setup", cpu=3600) + CONFIGURE, 600)
+    code, out = run_limited(sandbox(tmp, "setup", cpu=3600, compiler_cache=cache) + CONFIGURE, 600)
     if code != 0:
         fail_build(tmp, lab, out)
     # Only what grading runs: the lab and the test programs labelled like it (their CTest include
@@ -123,7 +134,8 @@ def build_solved(lab, tmp, jobs):
         if m and re.search(r"LABELS;" + short + r"\]", open(os.path.join(work, "build", "tests", f)).read()):
             targets.append(m.group(1))
     for attempt in (targets, ["all"]):
-        code, out = run_limited(sandbox(tmp, "setup", cpu=3600) + ["nice", "-n", "10", "cmake", "--build", "build", f"-j{jobs}", "--target", *attempt], 3600)
+        code, out = run_limited(sandbox(tmp, "setup", cpu=3600, compiler_cache=cache) +
+                                ["nice", "-n", "10", "cmake", "--build", "build", f"-j{jobs}", "--target", *attempt], 3600)
         if code != 0:
             fail_build(tmp, lab, out)
         tests = discover_tests(tmp, "setup")
@@ -138,7 +150,7 @@ def build_solved(lab, tmp, jobs):
     return tests
 
 
-def build_judge(lab, tmp, tests, jobs):
+def build_judge(lab, tmp, tests, jobs, cache):
     """The judge: the handed-out copy (every exercise its stub) built with the same test programs. It
     runs the tests on the probe's records (tests/probe.h): no student code, and no solution either,
     so a value that a test takes from the lab without a probe comes from a stub and the solution
@@ -147,9 +159,9 @@ def build_judge(lab, tmp, tests, jobs):
     shutil.copytree(os.path.join(tmp, "copy"), os.path.join(judge, "work"), symlinks=True)
     os.makedirs(os.path.join(judge, "work", "build"))
     chown_tree(judge)
-    code, out = run_limited(sandbox(judge, "setup", cpu=3600) + CONFIGURE, 600)
+    code, out = run_limited(sandbox(judge, "setup", cpu=3600, compiler_cache=cache) + CONFIGURE, 600)
     if code == 0:
-        code, out = run_limited(sandbox(judge, "setup", cpu=3600) + ["nice", "-n", "10", "cmake", "--build", "build", f"-j{jobs}",
+        code, out = run_limited(sandbox(judge, "setup", cpu=3600, compiler_cache=cache) + ["nice", "-n", "10", "cmake", "--build", "build", f"-j{jobs}",
                                                                     "--target", *sorted({os.path.basename(b) for b in tests})], 3600)
     if code != 0:
         fail_build(tmp, lab + " (the judge: the handed-out copy)", out)
