@@ -176,6 +176,8 @@ int main(int argc, char** argv) {
         std::printf("%s: %d shadow map renders\n", LAB_NAME, renderer->shadow_map_renders());
         if (renderer->shadow_map_renders() > 0)
             std::printf("%s: texels per side drawn, of the resolution: %s\n", LAB_NAME, renderer->shadow_maps_drawn().c_str());
+        if (renderer->shadow_map_renders() > 0)
+            std::printf("%s: opaque casters' triangles drawn, of their own: %s\n", LAB_NAME, renderer->shadow_maps_triangles().c_str());
         if (TranslucentLayers* layers = renderer->translucent_layers(); layers && !app.has_window()) {
             layers->collect();  // the last frame's counts (the GPU is idle now)
             if (layers->stats().overflow_pixels > 0 || layers->stats().dropped > 0) {

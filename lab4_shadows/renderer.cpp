@@ -1,5 +1,6 @@
 #include "renderer.h"
 
+#include "caster_detail.h"
 #include "mesh.h"
 #include "shader.h"
 #include "texture_image.h"
@@ -42,11 +43,25 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     lab::MeshLibrary library;  // reads each model file once
     std::vector<Caster> casters;  // lab 4: what the shadow maps draw
     bool translucent = false;     // lab 4: does any object need the translucent layers?
+    // Lab 4: per mesh, the coarser tessellations a map may draw and how far each is from the
+    // true surface (caster_detail.h), made once here.
+    std::map<std::string, std::pair<std::vector<const lab::GpuMesh*>, std::vector<double>>> details;
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
         if (it == meshes_.end()) {
             it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
+        }
+        if (!details.count(key)) {  // (a mesh may be here already as another object's coarser level)
+            auto& [levels, errors] = details[key];
+            for (const lab::ObjectDesc& level : coarser_levels(object)) {
+                if (errors.empty()) errors.push_back(surface_error(object.mesh, library.mesh(object)));
+                const lab::Mesh coarse = library.mesh(level);
+                auto at = meshes_.find(mesh_key(level));
+                if (at == meshes_.end()) at = meshes_.emplace(mesh_key(level), lab::upload_mesh(vk, coarse)).first;
+                levels.push_back(&at->second);
+                errors.push_back(surface_error(level.mesh, coarse));
+            }
         }
         const lab::MaterialDesc& material = scene.materials.at(object.material);
         items_.push_back({&it->second, {lab::model_matrix(object), glm::vec4(material.albedo, 1.0f)}});
@@ -57,7 +72,11 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
         normal_matrix(lit.model, lit.normal_matrix);
         lit.material = uint32_t(lighting.material_index(object.material));
         translucent = translucent || lighting.materials[lit.material].opacity < 1.0f;
-        casters.push_back({&it->second, lit.model, items_.back().box, lit.material, object.cast_shadows, Lighting::convex(object)});
+        const glm::mat3 axes(lit.model);  // object units → world: at most the longest axis
+        const double scale = std::max({glm::length(axes[0]), glm::length(axes[1]), glm::length(axes[2])});
+        const auto& [levels, errors] = details[key];
+        casters.push_back({&it->second, lit.model, items_.back().box, lit.material, object.cast_shadows, Lighting::convex(object),
+                           levels, errors, scale});
     }
     // Lab 4: the layers' lists are written by fragment shaders, an optional feature
     // (fragmentStoresAndAtomics). Without it translucent objects are drawn opaque, and the lab

@@ -37,6 +37,7 @@ public:
     int shadow_map_renders() const { return shadow_maps_->renders(); }
     int shadow_maps_rendered_last_frame() const { return shadow_maps_->rendered_last(); }
     std::string shadow_maps_drawn() const { return shadow_maps_->drawn(); }  // texels per side drawn, per map
+    std::string shadow_maps_triangles() const { return shadow_maps_->triangles(); }  // at the detail each map drew
     // Lab 4: before the target's render pass too: empties the translucent layers' lists (nothing
     // without translucent objects); a new frame size gets new lists first.
     void clear_translucent_layers(const lab::Frame& frame);

@@ -1,5 +1,6 @@
 #include "shadow_maps.h"
 
+#include "caster_detail.h"
 #include "map_footprint.h"
 #include "shader.h"
 
@@ -158,6 +159,19 @@ std::string ShadowMaps::drawn() const {
     return text;
 }
 
+std::string ShadowMaps::triangles() const {
+    const auto k = [](uint64_t n) {
+        char text[32];
+        std::snprintf(text, sizeof text, n < 10000 ? "%.0f" : "%.1f k", n < 10000 ? double(n) : double(n) / 1000.0);
+        return std::string(text);
+    };
+    std::string text;
+    for (const Map& m : maps_)
+        text += (text.empty() ? "" : ", ") + std::string(m.cube ? "cube " : "") + "light " + std::to_string(m.light) + ": " +
+                k(m.triangles) + " of " + k(m.own_triangles);
+    return text;
+}
+
 bool ShadowMaps::matches(const Lighting& lighting) const { return layout_of(lighting) == layout_; }
 
 void ShadowMaps::draw_view(DepthView& view, VkCommandBuffer cmd, int slot, VkExtent2D extent) const {
@@ -237,9 +251,11 @@ void ShadowMaps::record(VkCommandBuffer cmd, const Lighting& lighting, const glm
 // Draws the map's casters (`in_map`, casters_for) into the current pass: opaque ones with the
 // bound depth-only pipeline and the light's depth bias, at most `most_bias[i]` for caster i, or
 // (translucent, no `most_bias`) the translucent ones into transmittance layer `layer`.
+// `meshes` (optional): the tessellation to draw of each caster (caster_detail.h), else its own.
 void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_clip, const Lighting& lighting,
                               bool translucent, const std::vector<bool>& in_map, const lab::ShadowDesc* bias,
-                              const std::vector<float>& most_bias, uint32_t layer) const {
+                              const std::vector<float>& most_bias, uint32_t layer,
+                              const std::vector<const lab::GpuMesh*>* meshes) const {
     const lab::GpuMesh* bound = nullptr;
     for (size_t i = 0; i < objects_.size(); ++i) {
         const Caster& c = objects_[i];
@@ -247,13 +263,14 @@ void ShadowMaps::draw_casters(VkCommandBuffer cmd, const glm::dmat4& world_to_cl
         const ShadowConstants constants{glm::mat4(world_to_clip * glm::dmat4(c.model)),
                                         glm::vec4(1.0f - lighting.materials[c.material].opacity, float(layer),
                                                   translucent_->peel_slack(), 0.0f)};
-        if (c.mesh != bound) {
-            lab::bind_mesh(cmd, *c.mesh);
-            bound = c.mesh;
+        const lab::GpuMesh* mesh = meshes ? (*meshes)[i] : c.mesh;
+        if (mesh != bound) {
+            lab::bind_mesh(cmd, *mesh);
+            bound = mesh;
         }
         vkCmdPushConstants(cmd, opaque_.layout, kBoth, 0, sizeof constants, &constants);
         if (bias) vkCmdSetDepthBias(cmd, bias->bias, most_bias[i], bias->slope_bias);
-        vkCmdDrawIndexed(cmd, c.mesh->index_count, 1, 0, 0, 0);
+        vkCmdDrawIndexed(cmd, mesh->index_count, 1, 0, 0, 0);
     }
 }
 
@@ -323,6 +340,23 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
     if (vk_.enabled_features().depthBiasClamp)
         for (size_t i = 0; i < objects_.size(); ++i)
             if (in_map[i]) most_bias[i] = on_grid(f.depth_of_texels(objects_[i].box, most_texels / used));
+    // Opaque casters at the detail the map resolves (caster_detail.h): the coarsest tessellation
+    // within half a texel of the true surface at the caster, as the camera's mesh is. Translucent
+    // casters keep their own: a receiver on one is told from the faces in front of it by depth
+    // (translucent_shadows.cpp's tolerance), and a coarser face would sit deeper.
+    std::vector<const lab::GpuMesh*> detail(objects_.size(), nullptr);
+    map.triangles = map.own_triangles = 0;
+    for (size_t i = 0; i < objects_.size(); ++i) {
+        const Caster& c = objects_[i];
+        detail[i] = c.mesh;
+        if (!in_map[i] || translucent_material(lighting, c.material)) continue;
+        if (!c.levels.empty()) {
+            const size_t k = pick_level(c.errors, c.scale, half_texel(f, used, c.box));
+            if (k > 0) detail[i] = c.levels[k - 1];
+        }
+        map.triangles += detail[i]->index_count / 3;
+        map.own_triangles += c.mesh->index_count / 3;
+    }
     // Translucent casters: how far behind the nearest one a receiver must be (translucent_shadows.cpp),
     // and their boxes, whose covered_texels() on each face are all its transmittance pass draws.
     map.gpu.translucent = glm::vec4(TranslucentShadows::tolerance(f, used), 0.0f, 0.0f, 0.0f);
@@ -350,7 +384,7 @@ void ShadowMaps::render(VkCommandBuffer cmd, Map& map, const lab::LightDesc& lig
             const uint32_t cleared = std::min(map.depth.size, used + 8);
             map.depth.begin(cmd, face, 1.0f, VkRect2D{{0, 0}, {cleared, cleared}}, used);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque_.pipeline);
-            draw_casters(cmd, world_to_clip, lighting, false, in_face, &light.shadow, most_bias);
+            draw_casters(cmd, world_to_clip, lighting, false, in_face, &light.shadow, most_bias, 0, &detail);
             vkCmdEndRenderPass(cmd);
         }
         if (translucent_->active()) {
