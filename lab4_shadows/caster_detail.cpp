@@ -55,7 +55,7 @@ std::vector<lab::ObjectDesc> coarser_levels(const lab::ObjectDesc& object) {
 }
 
 double surface_error(const std::string& name, const lab::Mesh& mesh) {
-    constexpr int kGrid = 4;  // barycentric steps along each edge: corners, thirds of edges, inside
+    constexpr int kGrid = 4;  // barycentric steps along each edge: corners, quarters of edges, inside
     double worst = 0.0;
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         const glm::dvec3 a(mesh.vertices[mesh.indices[t]].position), b(mesh.vertices[mesh.indices[t + 1]].position),
