@@ -49,13 +49,13 @@ Renderer::Renderer(const lab::VulkanContext& vk, const lab::RenderTarget& target
     for (const lab::ObjectDesc& object : scene.objects) {
         const std::string key = mesh_key(object);
         auto it = meshes_.find(key);
-        if (it == meshes_.end()) {
-            it = meshes_.emplace(key, lab::upload_mesh(vk, library.mesh(object))).first;
-        }
-        if (!details.count(key)) {  // (a mesh may be here already as another object's coarser level)
+        // (a mesh may be here already as another object's coarser level, without levels of its own)
+        if (it == meshes_.end() || !details.count(key)) {
+            const lab::Mesh mesh = library.mesh(object);
+            if (it == meshes_.end()) it = meshes_.emplace(key, lab::upload_mesh(vk, mesh)).first;
             auto& [levels, errors] = details[key];
             for (const lab::ObjectDesc& level : coarser_levels(object)) {
-                if (errors.empty()) errors.push_back(surface_error(object.mesh, library.mesh(object)));
+                if (errors.empty()) errors.push_back(surface_error(object.mesh, mesh));
                 const lab::Mesh coarse = library.mesh(level);
                 auto at = meshes_.find(mesh_key(level));
                 if (at == meshes_.end()) at = meshes_.emplace(mesh_key(level), lab::upload_mesh(vk, coarse)).first;
